@@ -1,0 +1,289 @@
+//! [`SystemBuilder`]: collects particles, springs, pins and global forces and
+//! validates all of them at [`SystemBuilder::build`].
+
+use std::collections::HashMap;
+
+use crate::error::{BuildError, Quantity, SpringParameter};
+use crate::system::fresh_system_id;
+use crate::{Spring, System, Vec3};
+
+/// Builds a [`System`]; every value is checked at [`SystemBuilder::build`],
+/// which names the first particle, spring or field that is wrong.
+///
+/// ```
+/// use hooke_core::{SystemBuilder, Vec3};
+/// let mut b = SystemBuilder::new();
+/// let anchor = b.particle(1.0, [0.0, 0.0, 0.0]);
+/// let bob = b.particle(0.5, [0.0, -1.0, 0.0]);
+/// b.pin(anchor);
+/// b.spring(anchor, bob, 200.0).damping(0.1); // rest length: the initial 1 m
+/// b.gravity([0.0, -9.81, 0.0]);
+/// let system = b.build()?;
+/// assert_eq!(system.particle_count(), 2);
+/// assert_eq!(system.springs()[0].rest_length, 1.0);
+/// # Ok::<(), hooke_core::BuildError>(())
+/// ```
+#[derive(Debug, Clone, Default)]
+pub struct SystemBuilder {
+    masses: Vec<f64>,
+    positions: Vec<Vec3>,
+    velocities: Vec<Vec3>,
+    springs: Vec<SpringEntry>,
+    pins: Vec<usize>,
+    gravity: Option<Vec3>,
+    air_damping: Option<f64>,
+}
+
+/// A spring being added to a [`SystemBuilder`]; set its rest length and
+/// damping here.
+#[derive(Debug, Clone, Copy)]
+pub struct SpringEntry {
+    i: usize,
+    j: usize,
+    stiffness: f64,
+    rest_length: Option<f64>,
+    damping: f64,
+}
+
+impl SpringEntry {
+    /// Rest length `L` in m. Without it, the rest length is the distance
+    /// between the two particles' initial positions.
+    ///
+    /// ```
+    /// # let mut b = hooke_core::SystemBuilder::new();
+    /// # let (p, q) = (b.particle(1.0, [0.0; 3]), b.particle(1.0, [1.0, 0.0, 0.0]));
+    /// b.spring(p, q, 50.0).rest_length(0.8); // starts stretched by 0.2 m
+    /// ```
+    pub fn rest_length(&mut self, rest_length: f64) -> &mut Self {
+        self.rest_length = Some(rest_length);
+        self
+    }
+
+    /// Axial damping `c` in N·s/m: force `−c ((vᵢ − vⱼ)·d) d` on `i`
+    /// (default 0).
+    ///
+    /// ```
+    /// # let mut b = hooke_core::SystemBuilder::new();
+    /// # let (p, q) = (b.particle(1.0, [0.0; 3]), b.particle(1.0, [1.0, 0.0, 0.0]));
+    /// b.spring(p, q, 50.0).damping(0.5);
+    /// ```
+    pub fn damping(&mut self, damping: f64) -> &mut Self {
+        self.damping = damping;
+        self
+    }
+}
+
+impl SystemBuilder {
+    /// An empty builder: no particles, no gravity, no air damping.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds a particle of `mass` kg at rest at `position`; returns its index.
+    ///
+    /// ```
+    /// let mut b = hooke_core::SystemBuilder::new();
+    /// assert_eq!(b.particle(1.0, [0.0, 2.0, 0.0]), 0);
+    /// assert_eq!(b.particle(1.0, [1.0, 2.0, 0.0]), 1);
+    /// ```
+    pub fn particle(&mut self, mass: f64, position: impl Into<Vec3>) -> usize {
+        self.particle_with_velocity(mass, position, Vec3::zeros())
+    }
+
+    /// Adds a particle with an initial velocity; returns its index.
+    ///
+    /// ```
+    /// let mut b = hooke_core::SystemBuilder::new();
+    /// let p = b.particle_with_velocity(1.0, [0.0; 3], [0.0, 0.0, 3.0]);
+    /// assert_eq!(b.build()?.initial_velocities()[p].z, 3.0);
+    /// # Ok::<(), hooke_core::BuildError>(())
+    /// ```
+    pub fn particle_with_velocity(
+        &mut self,
+        mass: f64,
+        position: impl Into<Vec3>,
+        velocity: impl Into<Vec3>,
+    ) -> usize {
+        self.masses.push(mass);
+        self.positions.push(position.into());
+        self.velocities.push(velocity.into());
+        self.masses.len() - 1
+    }
+
+    /// Adds a spring of stiffness `k` N/m between particles `i` and `j`;
+    /// refine it through the returned [`SpringEntry`].
+    ///
+    /// ```
+    /// # let mut b = hooke_core::SystemBuilder::new();
+    /// # let (p, q) = (b.particle(1.0, [0.0; 3]), b.particle(1.0, [1.0, 0.0, 0.0]));
+    /// b.spring(p, q, 1e3).rest_length(1.0).damping(0.2);
+    /// ```
+    pub fn spring(&mut self, i: usize, j: usize, stiffness: f64) -> &mut SpringEntry {
+        self.springs.push(SpringEntry {
+            i,
+            j,
+            stiffness,
+            rest_length: None,
+            damping: 0.0,
+        });
+        self.springs.last_mut().expect("a spring was just pushed")
+    }
+
+    /// Pins particle `i`: its acceleration is zero, so it keeps its initial
+    /// velocity. Pinning twice is harmless.
+    ///
+    /// ```
+    /// let mut b = hooke_core::SystemBuilder::new();
+    /// let p = b.particle(1.0, [0.0; 3]);
+    /// b.pin(p);
+    /// assert!(b.build()?.is_pinned(p));
+    /// # Ok::<(), hooke_core::BuildError>(())
+    /// ```
+    pub fn pin(&mut self, i: usize) -> &mut Self {
+        self.pins.push(i);
+        self
+    }
+
+    /// Uniform gravitational acceleration `g` in m/s²: force `mᵢ g` on every
+    /// particle.
+    ///
+    /// ```
+    /// let mut b = hooke_core::SystemBuilder::new();
+    /// b.gravity([0.0, -9.81, 0.0]);
+    /// ```
+    pub fn gravity(&mut self, g: impl Into<Vec3>) -> &mut Self {
+        self.gravity = Some(g.into());
+        self
+    }
+
+    /// Air damping `γ` in N·s/m: force `−γ vᵢ` on every particle.
+    ///
+    /// ```
+    /// let mut b = hooke_core::SystemBuilder::new();
+    /// b.air_damping(0.01);
+    /// ```
+    pub fn air_damping(&mut self, gamma: f64) -> &mut Self {
+        self.air_damping = Some(gamma);
+        self
+    }
+
+    /// Validates everything and builds the system.
+    ///
+    /// # Errors
+    /// The first problem found, in this order: particles (mass, position,
+    /// velocity), springs (endpoints, parameters, duplicates), pins, gravity,
+    /// air damping. See [`BuildError`].
+    pub fn build(&self) -> Result<System, BuildError> {
+        self.check_particles()?;
+        let springs = self.resolved_springs()?;
+        let particles = self.masses.len();
+        let mut pinned = vec![false; particles];
+        for &particle in &self.pins {
+            *pinned.get_mut(particle).ok_or(BuildError::PinOutOfRange {
+                particle,
+                particles,
+            })? = true;
+        }
+        if let Some(g) = self.gravity.filter(|g| !g.iter().all(|c| c.is_finite())) {
+            return Err(BuildError::NonFiniteGravity { value: g.into() });
+        }
+        if let Some(value) = self.air_damping.filter(|&y| !(y.is_finite() && y >= 0.0)) {
+            return Err(BuildError::InvalidAirDamping { value });
+        }
+        let inverse_masses = self
+            .masses
+            .iter()
+            .zip(&pinned)
+            .map(|(&m, &p)| if p { 0.0 } else { 1.0 / m })
+            .collect();
+        Ok(System {
+            id: fresh_system_id(),
+            masses: self.masses.clone(),
+            inverse_masses,
+            pinned,
+            initial_positions: self.positions.clone(),
+            initial_velocities: self.velocities.clone(),
+            #[cfg(feature = "parallel")]
+            incidence: crate::forces::Incidence::new(particles, &springs),
+            springs,
+            gravity: self.gravity,
+            air_damping: self.air_damping,
+        })
+    }
+
+    fn check_particles(&self) -> Result<(), BuildError> {
+        for (particle, &mass) in self.masses.iter().enumerate() {
+            if !(mass.is_finite() && mass > 0.0) {
+                return Err(BuildError::InvalidMass { particle, mass });
+            }
+            for (quantity, value) in [
+                (Quantity::Position, self.positions[particle]),
+                (Quantity::Velocity, self.velocities[particle]),
+            ] {
+                if !value.iter().all(|c| c.is_finite()) {
+                    return Err(BuildError::NonFiniteParticle {
+                        particle,
+                        quantity,
+                        value: value.into(),
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn resolved_springs(&self) -> Result<Vec<Spring>, BuildError> {
+        let particles = self.masses.len();
+        let mut seen = HashMap::with_capacity(self.springs.len());
+        let mut springs = Vec::with_capacity(self.springs.len());
+        for (spring, e) in self.springs.iter().enumerate() {
+            if let Some(&endpoint) = [e.i, e.j].iter().find(|&&p| p >= particles) {
+                return Err(BuildError::SpringEndpointOutOfRange {
+                    spring,
+                    endpoint,
+                    particles,
+                });
+            }
+            if e.i == e.j {
+                return Err(BuildError::SelfSpring {
+                    spring,
+                    particle: e.i,
+                });
+            }
+            let rest_length = e
+                .rest_length
+                .unwrap_or_else(|| (self.positions[e.i] - self.positions[e.j]).norm());
+            for (parameter, value) in [
+                (SpringParameter::Stiffness, e.stiffness),
+                (SpringParameter::RestLength, rest_length),
+                (SpringParameter::Damping, e.damping),
+            ] {
+                if !(value.is_finite() && value >= 0.0) {
+                    return Err(BuildError::InvalidSpringParameter {
+                        spring,
+                        parameter,
+                        value,
+                    });
+                }
+            }
+            if let Some(&first) = seen.get(&(e.i.min(e.j), e.i.max(e.j))) {
+                return Err(BuildError::DuplicateSpring {
+                    spring,
+                    first,
+                    i: e.i,
+                    j: e.j,
+                });
+            }
+            seen.insert((e.i.min(e.j), e.i.max(e.j)), spring);
+            springs.push(Spring {
+                i: e.i,
+                j: e.j,
+                stiffness: e.stiffness,
+                rest_length,
+                damping: e.damping,
+            });
+        }
+        Ok(springs)
+    }
+}

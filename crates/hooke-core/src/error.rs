@@ -1,0 +1,177 @@
+//! Errors: [`BuildError`] for a system that fails validation, [`StepError`]
+//! for a step that cannot be taken or would leave a non-finite state.
+
+use thiserror::Error;
+
+/// Which spring parameter a [`BuildError::InvalidSpringParameter`] is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SpringParameter {
+    /// The stiffness `k`.
+    Stiffness,
+    /// The rest length `L`.
+    RestLength,
+    /// The axial damping `c`.
+    Damping,
+}
+
+impl std::fmt::Display for SpringParameter {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::Stiffness => "stiffness",
+            Self::RestLength => "rest length",
+            Self::Damping => "damping",
+        })
+    }
+}
+
+/// Which per-particle vector a [`BuildError::NonFiniteParticle`] or a
+/// [`StepError::NonFinite`] is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// A position.
+    Position,
+    /// A velocity.
+    Velocity,
+}
+
+impl std::fmt::Display for Quantity {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::Position => "position",
+            Self::Velocity => "velocity",
+        })
+    }
+}
+
+/// A system description that cannot be simulated, naming the culprit.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum BuildError {
+    /// A mass that is zero, negative, NaN or infinite.
+    #[error("particle {particle}: mass must be positive and finite, got {mass}")]
+    InvalidMass {
+        /// Index of the particle.
+        particle: usize,
+        /// The offending mass.
+        mass: f64,
+    },
+    /// A position or velocity with a NaN or infinite component.
+    #[error("particle {particle}: initial {quantity} is not finite: {value:?}")]
+    NonFiniteParticle {
+        /// Index of the particle.
+        particle: usize,
+        /// Position or velocity.
+        quantity: Quantity,
+        /// The offending vector.
+        value: [f64; 3],
+    },
+    /// A spring endpoint that names no particle.
+    #[error(
+        "spring {spring}: endpoint {endpoint} is out of range (the system has {particles} particles)"
+    )]
+    SpringEndpointOutOfRange {
+        /// Index of the spring.
+        spring: usize,
+        /// The offending endpoint.
+        endpoint: usize,
+        /// Number of particles in the system.
+        particles: usize,
+    },
+    /// A spring from a particle to itself.
+    #[error("spring {spring}: both ends are particle {particle}")]
+    SelfSpring {
+        /// Index of the spring.
+        spring: usize,
+        /// The particle at both ends.
+        particle: usize,
+    },
+    /// A second spring between the same two particles.
+    #[error("spring {spring}: duplicates spring {first} between particles {i} and {j}")]
+    DuplicateSpring {
+        /// Index of the duplicate.
+        spring: usize,
+        /// Index of the spring it duplicates.
+        first: usize,
+        /// One end.
+        i: usize,
+        /// The other end.
+        j: usize,
+    },
+    /// A negative, NaN or infinite stiffness, rest length or damping.
+    #[error("spring {spring}: {parameter} must be finite and non-negative, got {value}")]
+    InvalidSpringParameter {
+        /// Index of the spring.
+        spring: usize,
+        /// Which parameter.
+        parameter: SpringParameter,
+        /// The offending value.
+        value: f64,
+    },
+    /// A pin on a particle that does not exist.
+    #[error("pin on particle {particle} is out of range (the system has {particles} particles)")]
+    PinOutOfRange {
+        /// The requested particle.
+        particle: usize,
+        /// Number of particles in the system.
+        particles: usize,
+    },
+    /// A gravity vector with a NaN or infinite component.
+    #[error("gravity is not finite: {value:?}")]
+    NonFiniteGravity {
+        /// The offending vector.
+        value: [f64; 3],
+    },
+    /// An air-damping coefficient that is negative, NaN or infinite.
+    #[error("air damping must be finite and non-negative, got {value}")]
+    InvalidAirDamping {
+        /// The offending coefficient.
+        value: f64,
+    },
+}
+
+/// A step that could not be taken. The state is left as it was before the
+/// step.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum StepError {
+    /// A time step that is zero, negative, NaN or infinite.
+    #[error("time step must be positive and finite, got {dt}")]
+    InvalidTimestep {
+        /// The offending step.
+        dt: f64,
+    },
+    /// A state whose particle count differs from the system's.
+    #[error("state has {state} particles but the system has {system}")]
+    StateMismatch {
+        /// Particles in the state.
+        state: usize,
+        /// Particles in the system.
+        system: usize,
+    },
+    /// The step produced a NaN or infinite position or velocity.
+    #[error("non-finite {quantity} of particle {particle} at t = {time}")]
+    NonFinite {
+        /// Time at the end of the failed step.
+        time: f64,
+        /// First particle found with a non-finite value.
+        particle: usize,
+        /// Position or velocity.
+        quantity: Quantity,
+    },
+    /// An adaptive integrator could not meet its tolerance with any step size
+    /// representable at this time.
+    #[error("step size {step} underflowed at t = {time}")]
+    StepSizeUnderflow {
+        /// Time at which the step was attempted.
+        time: f64,
+        /// The rejected step size.
+        step: f64,
+    },
+    /// An adaptive integrator needed more substeps than allowed to cover one
+    /// requested step.
+    #[error("{substeps} substeps did not reach the end of the step at t = {time}")]
+    TooManySubsteps {
+        /// Time reached when the integrator gave up.
+        time: f64,
+        /// Substeps taken.
+        substeps: usize,
+    },
+}

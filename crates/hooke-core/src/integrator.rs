@@ -1,0 +1,97 @@
+//! The [`Integrator`] trait and the [`StepReport`] every step returns.
+
+use std::ops::AddAssign;
+
+use crate::error::StepError;
+use crate::{State, System};
+
+/// What one call to [`Integrator::step`] did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct StepReport {
+    /// Evaluations of all forces of the system.
+    pub force_evaluations: usize,
+    /// Steps (or, for adaptive methods, substeps) that were accepted.
+    pub accepted_steps: usize,
+    /// Substeps an adaptive method rejected and retried smaller.
+    pub rejected_steps: usize,
+    /// Iterations of a linear solver (zero for explicit methods).
+    pub linear_iterations: usize,
+}
+
+impl StepReport {
+    /// The report of one accepted fixed step that evaluated the forces
+    /// `force_evaluations` times.
+    #[must_use]
+    pub fn fixed_step(force_evaluations: usize) -> Self {
+        Self {
+            force_evaluations,
+            accepted_steps: 1,
+            ..Self::default()
+        }
+    }
+}
+
+impl AddAssign for StepReport {
+    fn add_assign(&mut self, other: Self) {
+        self.force_evaluations += other.force_evaluations;
+        self.accepted_steps += other.accepted_steps;
+        self.rejected_steps += other.rejected_steps;
+        self.linear_iterations += other.linear_iterations;
+    }
+}
+
+/// A time integrator: advances a [`State`] of a [`System`] by one step.
+///
+/// Integrators own their scratch buffers, so once they have seen a system a
+/// step allocates nothing. Integrators that keep history between steps
+/// (staggered velocities, previous accelerations, a Nordsieck vector) restart
+/// themselves from the state alone whenever they are handed a state they did
+/// not produce, a different system, or (unless they can rescale) a different
+/// step size — see [`crate::History`].
+pub trait Integrator {
+    /// Advances `state` from `t` to `t + dt`.
+    ///
+    /// # Errors
+    /// [`StepError::InvalidTimestep`] for `dt` not positive and finite,
+    /// [`StepError::StateMismatch`] for a state of another system, and
+    /// [`StepError::NonFinite`] if the step would produce a NaN or infinite
+    /// position or velocity; in every case the state is left unchanged.
+    fn step(
+        &mut self,
+        system: &System,
+        state: &mut State,
+        dt: f64,
+    ) -> Result<StepReport, StepError>;
+
+    /// A short lowercase name for reports and plots, e.g. `"rk4"`.
+    fn name(&self) -> &'static str {
+        std::any::type_name::<Self>()
+    }
+}
+
+impl<I: Integrator + ?Sized> Integrator for Box<I> {
+    fn step(
+        &mut self,
+        system: &System,
+        state: &mut State,
+        dt: f64,
+    ) -> Result<StepReport, StepError> {
+        (**self).step(system, state, dt)
+    }
+
+    fn name(&self) -> &'static str {
+        (**self).name()
+    }
+}
+
+/// Checks the arguments every step shares: a positive, finite `dt` and a
+/// state with as many particles as the system.
+///
+/// # Errors
+/// [`StepError::InvalidTimestep`] or [`StepError::StateMismatch`].
+pub fn check_step(system: &System, state: &State, dt: f64) -> Result<(), StepError> {
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(StepError::InvalidTimestep { dt });
+    }
+    system.check_state(state)
+}

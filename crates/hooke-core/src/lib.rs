@@ -1,0 +1,64 @@
+//! The mass-spring model of hooke.
+//!
+//! Particles `i = 0..n` with mass `mᵢ`, position `xᵢ` and velocity `vᵢ` obey
+//! Newton's law `M x'' = f(x, v)` with a diagonal mass matrix `M`. The forces
+//! are those a [`System`] declares and no others:
+//!
+//! - springs (`i`, `j`, stiffness `k`, rest length `L`, axial damping `c`) —
+//!   see [`Spring`] for the force and its Jacobian blocks;
+//! - gravity `mᵢ g` and air damping `−γ vᵢ`, if declared;
+//! - pins: a pinned particle has zero acceleration.
+//!
+//! The pieces:
+//!
+//! - [`SystemBuilder`] validates a description and builds an immutable
+//!   [`System`]; [`State`] holds `x`, `v` and `t`, the only thing a step
+//!   changes.
+//! - [`ForceEvaluator`] computes `a = M⁻¹ f(x, v)`, in parallel on large
+//!   systems when the `parallel` feature is on.
+//! - [`Integrator`] is the trait every time integrator implements;
+//!   [`Simulation`] drives one and calls [`Observer`]s such as [`EnergyLog`]
+//!   and [`StrainLog`].
+//! - [`System::energy`] and [`System::dissipation_power`] support
+//!   energy-balance checks.
+//! - [`reference`](mod@reference) holds problems with known answers.
+//!
+//! ```
+//! use hooke_core::{SystemBuilder, Vec3};
+//! let mut b = SystemBuilder::new();
+//! let top = b.particle(0.1, [0.0, 0.0, 0.0]);
+//! let bottom = b.particle(0.1, [0.0, -0.5, 0.0]);
+//! b.pin(top);
+//! b.spring(top, bottom, 40.0);
+//! b.gravity([0.0, -9.81, 0.0]);
+//! let system = b.build()?;
+//! let state = system.initial_state();
+//! assert_eq!(state.positions()[bottom], Vec3::new(0.0, -0.5, 0.0));
+//! # Ok::<(), hooke_core::BuildError>(())
+//! ```
+
+mod builder;
+mod energy;
+mod error;
+mod forces;
+mod integrator;
+mod observer;
+pub mod reference;
+mod spring;
+mod state;
+mod system;
+
+pub use builder::{SpringEntry, SystemBuilder};
+pub use energy::Energy;
+pub use error::{BuildError, Quantity, SpringParameter, StepError};
+pub use forces::{ForceEvaluator, PARALLEL_MIN_SPRINGS, Parallelism};
+pub use integrator::{Integrator, StepReport, check_step};
+pub use observer::{EnergyLog, EnergySample, Observer, Simulation, StrainLog};
+pub use spring::{CompressedSprings, Spring};
+pub use state::{History, State};
+pub use system::System;
+
+/// A 3-vector of `f64`: positions, velocities, forces.
+pub type Vec3 = nalgebra::Vector3<f64>;
+/// A 3x3 matrix of `f64`: the Jacobian blocks of a spring.
+pub type Mat3 = nalgebra::Matrix3<f64>;

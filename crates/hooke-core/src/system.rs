@@ -1,0 +1,135 @@
+//! [`System`]: the topology and parameters of a mass-spring system, immutable
+//! while stepping.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use crate::{Spring, State, StepError, Vec3};
+
+static NEXT_SYSTEM_ID: AtomicU64 = AtomicU64::new(1);
+
+/// Particles, springs and global force terms, validated by
+/// [`crate::SystemBuilder`] and immutable afterwards.
+///
+/// The equations of motion are `M x'' = f(x, v)` with `M` diagonal and
+///
+/// ```text
+/// fᵢ = Σ_springs fᵢ^spring  +  mᵢ g  −  γ vᵢ
+/// ```
+///
+/// where gravity `g` and air damping `γ` are present only if the system
+/// declares them. A pinned particle has zero acceleration: it keeps its
+/// initial velocity (zero unless one was given), whatever force acts on it.
+#[derive(Debug, Clone)]
+pub struct System {
+    pub(crate) id: u64,
+    pub(crate) masses: Vec<f64>,
+    /// `1/mᵢ`, or 0 for pinned particles.
+    pub(crate) inverse_masses: Vec<f64>,
+    pub(crate) pinned: Vec<bool>,
+    pub(crate) initial_positions: Vec<Vec3>,
+    pub(crate) initial_velocities: Vec<Vec3>,
+    pub(crate) springs: Vec<Spring>,
+    pub(crate) gravity: Option<Vec3>,
+    pub(crate) air_damping: Option<f64>,
+    #[cfg(feature = "parallel")]
+    pub(crate) incidence: crate::forces::Incidence,
+}
+
+pub(crate) fn fresh_system_id() -> u64 {
+    NEXT_SYSTEM_ID.fetch_add(1, Ordering::Relaxed)
+}
+
+impl System {
+    pub(crate) fn id(&self) -> u64 {
+        self.id
+    }
+
+    /// Number of particles.
+    #[must_use]
+    pub fn particle_count(&self) -> usize {
+        self.masses.len()
+    }
+
+    /// Particle masses `mᵢ` in kg.
+    #[must_use]
+    pub fn masses(&self) -> &[f64] {
+        &self.masses
+    }
+
+    /// Inverse masses `1/mᵢ`, with 0 for pinned particles: `aᵢ = fᵢ/mᵢ` for
+    /// free particles and 0 for pinned ones.
+    #[must_use]
+    pub fn inverse_masses(&self) -> &[f64] {
+        &self.inverse_masses
+    }
+
+    /// Whether particle `i` is pinned; `false` for an index out of range.
+    #[must_use]
+    pub fn is_pinned(&self, i: usize) -> bool {
+        self.pinned.get(i).copied().unwrap_or(false)
+    }
+
+    /// Indices of the pinned particles, in increasing order.
+    pub fn pinned(&self) -> impl Iterator<Item = usize> + '_ {
+        self.pinned
+            .iter()
+            .enumerate()
+            .filter_map(|(i, &p)| p.then_some(i))
+    }
+
+    /// The springs, in the order they were added.
+    #[must_use]
+    pub fn springs(&self) -> &[Spring] {
+        &self.springs
+    }
+
+    /// Gravitational acceleration `g`, if the system has gravity.
+    #[must_use]
+    pub fn gravity(&self) -> Option<Vec3> {
+        self.gravity
+    }
+
+    /// Air-damping coefficient `γ` (force `−γ vᵢ` on every particle), if the
+    /// system has air damping.
+    #[must_use]
+    pub fn air_damping(&self) -> Option<f64> {
+        self.air_damping
+    }
+
+    /// Initial positions, as given to the builder.
+    #[must_use]
+    pub fn initial_positions(&self) -> &[Vec3] {
+        &self.initial_positions
+    }
+
+    /// Initial velocities, as given to the builder (zero where none was
+    /// given).
+    #[must_use]
+    pub fn initial_velocities(&self) -> &[Vec3] {
+        &self.initial_velocities
+    }
+
+    /// Checks that `state` has one entry per particle of this system.
+    ///
+    /// # Errors
+    /// [`StepError::StateMismatch`] otherwise.
+    pub fn check_state(&self, state: &State) -> Result<(), StepError> {
+        if state.len() == self.particle_count() {
+            Ok(())
+        } else {
+            Err(StepError::StateMismatch {
+                state: state.len(),
+                system: self.particle_count(),
+            })
+        }
+    }
+
+    /// A fresh state at the initial positions and velocities, at `t = 0`.
+    #[must_use]
+    pub fn initial_state(&self) -> State {
+        State::new(
+            self.initial_positions.clone(),
+            self.initial_velocities.clone(),
+        )
+    }
+}

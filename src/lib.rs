@@ -1,0 +1,61 @@
+//! hooke simulates mass-spring systems — cloth, ropes, volumetric bodies —
+//! and measures, on your own scene, how accurate, stable and fast each time
+//! integrator is.
+//!
+//! This crate is the facade: it re-exports the model ([`core`]) and the
+//! explicit integrators ([`explicit`]), and offers a [`prelude`] and one
+//! [`Error`] for both.
+//!
+//! ```
+//! use hooke::prelude::*;
+//!
+//! // A pendulum-like spring under gravity, integrated with velocity Verlet.
+//! let mut b = SystemBuilder::new();
+//! let anchor = b.particle(1.0, [0.0, 0.0, 0.0]);
+//! let bob = b.particle(0.2, [0.5, 0.0, 0.0]);
+//! b.pin(anchor);
+//! b.spring(anchor, bob, 500.0).damping(0.05);
+//! b.gravity([0.0, -9.81, 0.0]);
+//! let system = b.build()?;
+//!
+//! let mut state = system.initial_state();
+//! let mut energy = EnergyLog::default();
+//! Simulation::new(&system, &mut VelocityVerlet::new())
+//!     .observe(100, &mut energy)
+//!     .run(&mut state, 1e-3, 2000)?;
+//! let first = energy.samples()[0].energy.total();
+//! let last = energy.samples().last().unwrap().energy.total();
+//! assert!(last <= first); // the damper only removes energy
+//! # Ok::<(), hooke::Error>(())
+//! ```
+
+pub use hooke_core as core;
+pub use hooke_explicit as explicit;
+
+/// Any error hooke returns.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Error {
+    /// The system description is invalid.
+    #[error(transparent)]
+    Build(#[from] hooke_core::BuildError),
+    /// A step could not be taken.
+    #[error(transparent)]
+    Step(#[from] hooke_core::StepError),
+    /// An integrator parameter is out of range.
+    #[error(transparent)]
+    Parameter(#[from] hooke_explicit::ParameterError),
+}
+
+/// The types most programs need.
+pub mod prelude {
+    pub use crate::Error;
+    pub use hooke_core::reference::{BeadOnString, HangingChain, Oscillator};
+    pub use hooke_core::{
+        BuildError, EnergyLog, Integrator, Observer, Simulation, State, StepError, StepReport,
+        StrainLog, System, SystemBuilder, Vec3,
+    };
+    pub use hooke_explicit::{
+        Beeman, DormandPrince, ExplicitEuler, Gear, Heun, Leapfrog, Midpoint, PositionVerlet, Rk4,
+        SymplecticEuler, VelocityVerlet,
+    };
+}

@@ -1,0 +1,39 @@
+//! Helpers shared by the integration tests.
+
+use hooke::prelude::*;
+
+/// Largest error of the bob against the exact solution over `[0, t_end]`,
+/// checked after every step: `max(|u − u*|, |u' − u*'|/ω)`.
+pub fn oscillator_error(
+    integrator: &mut dyn Integrator,
+    oscillator: &Oscillator,
+    dt: f64,
+    t_end: f64,
+) -> f64 {
+    let system = oscillator.system().expect("valid oscillator");
+    let mut state = system.initial_state();
+    let steps = (t_end / dt).round() as usize;
+    let mut worst: f64 = 0.0;
+    for _ in 0..steps {
+        integrator
+            .step(&system, &mut state, dt)
+            .expect("stable step");
+        let (u, v) = oscillator.solution(state.time());
+        let bob = Oscillator::BOB;
+        let position = (state.positions()[bob].x - u).abs();
+        let velocity = (state.velocities()[bob].x - v).abs() / oscillator.omega();
+        worst = worst.max(position).max(velocity);
+    }
+    worst
+}
+
+/// Least-squares slope of `log y` against `log x`.
+#[allow(dead_code)] // not every test binary fits orders
+pub fn log_log_slope(xs: &[f64], ys: &[f64]) -> f64 {
+    let (lx, ly): (Vec<f64>, Vec<f64>) = xs.iter().zip(ys).map(|(x, y)| (x.ln(), y.ln())).unzip();
+    let n = lx.len() as f64;
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    let cov: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let var: f64 = lx.iter().map(|x| (x - mx) * (x - mx)).sum();
+    cov / var
+}

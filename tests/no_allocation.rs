@@ -1,0 +1,62 @@
+//! A steady-state step allocates nothing: every integrator owns its buffers.
+#![allow(unsafe_code)] // a counting global allocator needs `unsafe impl`
+
+use std::alloc::{GlobalAlloc, Layout, System as SystemAllocator};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use hooke::explicit::fixed_step_integrators;
+use hooke::prelude::*;
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: defers to the system allocator and only counts the calls.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: same contract as the caller's.
+        unsafe { SystemAllocator.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: same contract as the caller's.
+        unsafe { SystemAllocator.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: same contract as the caller's.
+        unsafe { SystemAllocator.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn steady_state_steps_do_not_allocate() {
+    let system = HangingChain::new(20, 0.1, 500.0, 0.1)
+        .damped(0.2, 0.01)
+        .system()
+        .unwrap();
+    let mut integrators = fixed_step_integrators();
+    integrators.push(Box::new(DormandPrince::default()));
+    for mut integrator in integrators {
+        let mut state = system.initial_state();
+        for _ in 0..5 {
+            integrator.step(&system, &mut state, 1e-3).unwrap();
+        }
+        let before = ALLOCATIONS.load(Ordering::Relaxed);
+        for _ in 0..50 {
+            integrator.step(&system, &mut state, 1e-3).unwrap();
+        }
+        let allocations = ALLOCATIONS.load(Ordering::Relaxed) - before;
+        assert_eq!(
+            allocations,
+            0,
+            "{} allocated {allocations} times in 50 steps",
+            integrator.name()
+        );
+    }
+}
