@@ -49,7 +49,7 @@ pub enum Error {
 /// The types most programs need.
 pub mod prelude {
     pub use crate::Error;
-    pub use hooke_core::reference::{BeadOnString, HangingChain, Oscillator};
+    pub use hooke_core::reference::{BeadOnString, HangingChain, Oscillator, Sheet};
     pub use hooke_core::{
         BuildError, EnergyLog, Integrator, Observer, Simulation, State, StepError, StepReport,
         StrainLog, System, SystemBuilder, Vec3,

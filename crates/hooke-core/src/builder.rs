@@ -204,8 +204,6 @@ impl SystemBuilder {
             pinned,
             initial_positions: self.positions.clone(),
             initial_velocities: self.velocities.clone(),
-            #[cfg(feature = "parallel")]
-            incidence: crate::forces::Incidence::new(particles, &springs),
             springs,
             gravity: self.gravity,
             air_damping: self.air_damping,

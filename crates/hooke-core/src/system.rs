@@ -31,8 +31,6 @@ pub struct System {
     pub(crate) springs: Vec<Spring>,
     pub(crate) gravity: Option<Vec3>,
     pub(crate) air_damping: Option<f64>,
-    #[cfg(feature = "parallel")]
-    pub(crate) incidence: crate::forces::Incidence,
 }
 
 pub(crate) fn fresh_system_id() -> u64 {
