@@ -34,7 +34,22 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
+/// Allocations made by `work`.
+fn allocations_during(work: impl FnOnce()) -> usize {
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    work();
+    ALLOCATIONS.load(Ordering::Relaxed) - before
+}
+
+/// The counter is global, so this binary has a single test: the harness
+/// allocates while it reports on other tests, and there are none.
 #[test]
+fn steady_state_work_does_not_allocate() {
+    steady_state_steps_do_not_allocate();
+    #[cfg(feature = "parallel")]
+    parallel_force_evaluation_does_not_allocate();
+}
+
 fn steady_state_steps_do_not_allocate() {
     let system = HangingChain::new(20, 0.1, 500.0, 0.1)
         .damped(0.2, 0.01)
@@ -47,11 +62,11 @@ fn steady_state_steps_do_not_allocate() {
         for _ in 0..5 {
             integrator.step(&system, &mut state, 1e-3).unwrap();
         }
-        let before = ALLOCATIONS.load(Ordering::Relaxed);
-        for _ in 0..50 {
-            integrator.step(&system, &mut state, 1e-3).unwrap();
-        }
-        let allocations = ALLOCATIONS.load(Ordering::Relaxed) - before;
+        let allocations = allocations_during(|| {
+            for _ in 0..50 {
+                integrator.step(&system, &mut state, 1e-3).unwrap();
+            }
+        });
         assert_eq!(
             allocations,
             0,
@@ -59,4 +74,25 @@ fn steady_state_steps_do_not_allocate() {
             integrator.name()
         );
     }
+}
+
+#[cfg(feature = "parallel")]
+fn parallel_force_evaluation_does_not_allocate() {
+    use hooke::core::{ForceEvaluator, Parallelism};
+    let system = Sheet::new(48).system().unwrap();
+    let state = system.initial_state();
+    let mut a = vec![Vec3::zeros(); system.particle_count()];
+    let mut evaluator = ForceEvaluator::new(Parallelism::Parallel);
+    for _ in 0..5 {
+        evaluator.accelerations(&system, state.positions(), state.velocities(), &mut a);
+    }
+    let allocations = allocations_during(|| {
+        for _ in 0..50 {
+            evaluator.accelerations(&system, state.positions(), state.velocities(), &mut a);
+        }
+    });
+    assert_eq!(
+        allocations, 0,
+        "parallel evaluation allocated {allocations} times in 50 calls"
+    );
 }

@@ -99,6 +99,9 @@ impl ForceEvaluator {
 
     #[cfg(feature = "parallel")]
     fn use_parallel(&self, system: &System) -> bool {
+        if system.particle_count() == 0 || system.springs().is_empty() {
+            return false;
+        }
         match self.parallelism {
             Parallelism::Auto => system.springs().len() >= PARALLEL_MIN_SPRINGS,
             Parallelism::Sequential => false,
@@ -178,4 +181,30 @@ fn scatter(springs: &[crate::Spring], x: &[Vec3], v: &[Vec3], f: &mut [Vec3]) {
 fn sequential_forces(system: &System, x: &[Vec3], v: &[Vec3], f: &mut [Vec3]) {
     external_forces(system, v, f);
     scatter(system.springs(), x, v, f);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::SystemBuilder;
+
+    /// Systems without particles or without springs take the sequential path
+    /// whatever is asked.
+    #[test]
+    fn parallel_request_on_empty_systems_is_safe() {
+        let empty = SystemBuilder::new().build().unwrap();
+        ForceEvaluator::new(Parallelism::Parallel).forces(&empty, &[], &[], &mut []);
+        let mut b = SystemBuilder::new();
+        b.particle(2.0, [0.0; 3]);
+        b.gravity([0.0, -1.0, 0.0]);
+        let lone = b.build().unwrap();
+        let mut f = [Vec3::zeros()];
+        ForceEvaluator::new(Parallelism::Parallel).forces(
+            &lone,
+            &[Vec3::zeros()],
+            &[Vec3::zeros()],
+            &mut f,
+        );
+        assert_eq!(f[0], Vec3::new(0.0, -2.0, 0.0));
+    }
 }
