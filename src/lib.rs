@@ -2,9 +2,9 @@
 //! and measures, on your own scene, how accurate, stable and fast each time
 //! integrator is.
 //!
-//! This crate is the facade: it re-exports the model ([`core`]) and the
-//! explicit integrators ([`explicit`]), and offers a [`prelude`] and one
-//! [`Error`] for both.
+//! This crate is the facade: it re-exports the model ([`core`]), the explicit
+//! integrators ([`explicit`]) and the implicit ones ([`implicit`]), and offers
+//! a [`prelude`] and one [`Error`] for all of them.
 //!
 //! ```
 //! use hooke::prelude::*;
@@ -31,6 +31,7 @@
 
 pub use hooke_core as core;
 pub use hooke_explicit as explicit;
+pub use hooke_implicit as implicit;
 
 /// Any error hooke returns.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -43,7 +44,7 @@ pub enum Error {
     Step(#[from] hooke_core::StepError),
     /// An integrator parameter is out of range.
     #[error(transparent)]
-    Parameter(#[from] hooke_explicit::ParameterError),
+    Parameter(#[from] hooke_core::ParameterError),
 }
 
 /// The types most programs need.
@@ -58,4 +59,5 @@ pub mod prelude {
         Beeman, DormandPrince, ExplicitEuler, Gear, Heun, Leapfrog, Midpoint, PositionVerlet, Rk4,
         SymplecticEuler, VelocityVerlet,
     };
+    pub use hooke_implicit::{Implicit, LinearSolver, PcgSettings, Scheme};
 }

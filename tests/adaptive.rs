@@ -2,7 +2,7 @@
 //! fixed-step RK4 where the stiffness changes in time, and fails cleanly.
 
 use approx::assert_abs_diff_eq;
-use hooke::explicit::ParameterError;
+use hooke::core::ParameterError;
 use hooke::prelude::*;
 
 /// With `rtol = atol = tol` and `|y| ≤ 1` each component is allowed an error

@@ -46,8 +46,69 @@ fn allocations_during(work: impl FnOnce()) -> usize {
 #[test]
 fn steady_state_work_does_not_allocate() {
     steady_state_steps_do_not_allocate();
+    implicit_steps_do_not_allocate();
     #[cfg(feature = "parallel")]
     parallel_force_evaluation_does_not_allocate();
+    #[cfg(feature = "parallel")]
+    parallel_implicit_steps_do_not_allocate();
+}
+
+/// Assembly, PCG and Cholesky (faer's numeric factorization and solve run in
+/// storage allocated with the symbolic analysis), with and without Newton
+/// iterations.
+fn implicit_steps_do_not_allocate() {
+    use hooke::implicit::{Implicit, LinearSolver};
+    let system = Sheet {
+        damping: 0.05,
+        ..Sheet::new(12)
+    }
+    .system()
+    .unwrap();
+    let integrators = [
+        Implicit::backward_euler(),
+        Implicit::backward_euler().with_solver(LinearSolver::Cholesky),
+        Implicit::bdf2().with_newton(3, 1e-9).unwrap(),
+        Implicit::bdf2()
+            .with_solver(LinearSolver::Cholesky)
+            .with_newton(3, 1e-9)
+            .unwrap(),
+    ];
+    for mut integrator in integrators {
+        let mut state = system.initial_state();
+        for _ in 0..3 {
+            integrator.step(&system, &mut state, 1e-2).unwrap();
+        }
+        let allocations = allocations_during(|| {
+            for _ in 0..10 {
+                integrator.step(&system, &mut state, 1e-2).unwrap();
+            }
+        });
+        assert_eq!(
+            allocations,
+            0,
+            "{} allocated {allocations} times in 10 steps",
+            integrator.name()
+        );
+    }
+}
+
+/// Above `PARALLEL_MIN_PARTICLES` assembly, products and vector operations
+/// run on rayon, still without allocating.
+#[cfg(feature = "parallel")]
+fn parallel_implicit_steps_do_not_allocate() {
+    use hooke::implicit::{Implicit, PARALLEL_MIN_PARTICLES};
+    let side = (PARALLEL_MIN_PARTICLES as f64).sqrt().ceil() as usize;
+    let system = Sheet::new(side).system().unwrap();
+    let mut integrator = Implicit::backward_euler();
+    let mut state = system.initial_state();
+    integrator.step(&system, &mut state, 1e-4).unwrap();
+    let allocations = allocations_during(|| {
+        integrator.step(&system, &mut state, 1e-4).unwrap();
+    });
+    assert_eq!(
+        allocations, 0,
+        "a parallel implicit step allocated {allocations} times"
+    );
 }
 
 fn steady_state_steps_do_not_allocate() {

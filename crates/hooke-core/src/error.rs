@@ -165,6 +165,43 @@ pub enum StepError {
         /// The rejected step size.
         step: f64,
     },
+    /// The linear system of an implicit step has a NaN or infinite entry.
+    #[error("non-finite linear system at particle {particle} at t = {time}")]
+    NonFiniteSystem {
+        /// Time at the start of the failed step.
+        time: f64,
+        /// First particle whose row is not finite.
+        particle: usize,
+    },
+    /// The linear system of an implicit step is not positive definite (for
+    /// example under compression with the exact stiffness blocks).
+    #[error("linear system is not positive definite{} at t = {time}", particle.map_or(String::new(), |p| format!(" at particle {p}")))]
+    NotPositiveDefinite {
+        /// Time at the start of the failed step.
+        time: f64,
+        /// The particle whose diagonal block failed, where known.
+        particle: Option<usize>,
+    },
+    /// A linear solve in strict mode stopped at its iteration cap.
+    #[error(
+        "linear solver did not converge in {iterations} iterations (relative residual {residual:.3e}) at t = {time}"
+    )]
+    NoConvergence {
+        /// Time at the start of the failed step.
+        time: f64,
+        /// Iterations taken.
+        iterations: usize,
+        /// Relative residual reached.
+        residual: f64,
+    },
+    /// A system too large for a solver's 32-bit indices.
+    #[error("{particles} particles and {springs} springs exceed the solver's 32-bit indices")]
+    SystemTooLarge {
+        /// Particles in the system.
+        particles: usize,
+        /// Springs in the system.
+        springs: usize,
+    },
     /// An adaptive integrator needed more substeps than allowed to cover one
     /// requested step.
     #[error("{substeps} substeps did not reach the end of the step at t = {time}")]
@@ -174,4 +211,37 @@ pub enum StepError {
         /// Substeps taken.
         substeps: usize,
     },
+}
+
+/// An integrator or solver parameter outside its valid range.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("{integrator}: {parameter} must be {requirement}, got {value}")]
+pub struct ParameterError {
+    /// The integrator's or solver's name.
+    pub integrator: &'static str,
+    /// The parameter's name.
+    pub parameter: &'static str,
+    /// The value given.
+    pub value: f64,
+    /// What the value must be.
+    pub requirement: &'static str,
+}
+
+impl ParameterError {
+    /// An error for `parameter` of `integrator`, which must be `requirement`
+    /// but is `value`.
+    #[must_use]
+    pub fn new(
+        integrator: &'static str,
+        parameter: &'static str,
+        value: f64,
+        requirement: &'static str,
+    ) -> Self {
+        Self {
+            integrator,
+            parameter,
+            value,
+            requirement,
+        }
+    }
 }

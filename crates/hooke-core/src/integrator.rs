@@ -5,17 +5,34 @@ use std::ops::AddAssign;
 use crate::error::StepError;
 use crate::{State, System};
 
-/// What one call to [`Integrator::step`] did.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// What one call to [`Integrator::step`] did. Adding reports sums the counts
+/// and keeps the largest residuals.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StepReport {
-    /// Evaluations of all forces of the system.
+    /// Evaluations of all forces of the system (for implicit methods: of the
+    /// forces with their Jacobian blocks, i.e. assemblies of the system).
     pub force_evaluations: usize,
     /// Steps (or, for adaptive methods, substeps) that were accepted.
     pub accepted_steps: usize,
     /// Substeps an adaptive method rejected and retried smaller.
     pub rejected_steps: usize,
-    /// Iterations of a linear solver (zero for explicit methods).
+    /// Iterations of an iterative linear solver (zero for explicit methods and
+    /// direct solvers).
     pub linear_iterations: usize,
+    /// Linear systems solved.
+    pub linear_solves: usize,
+    /// Linear solves that stopped at their iteration cap before meeting their
+    /// tolerance; their approximate solution was used.
+    pub unconverged_solves: usize,
+    /// Largest relative residual `‖S(b − A x)‖/‖S b‖` a linear solve ended
+    /// with.
+    pub linear_residual: f64,
+    /// Newton iterations of implicit methods (a linearised step counts one).
+    pub newton_iterations: usize,
+    /// Largest last Newton step `‖J⁻¹ g‖∞` of a step, in m/s: the residual of
+    /// the nonlinear equations in velocity units (zero where only linearised
+    /// steps were taken).
+    pub newton_residual: f64,
 }
 
 impl StepReport {
@@ -37,6 +54,11 @@ impl AddAssign for StepReport {
         self.accepted_steps += other.accepted_steps;
         self.rejected_steps += other.rejected_steps;
         self.linear_iterations += other.linear_iterations;
+        self.linear_solves += other.linear_solves;
+        self.unconverged_solves += other.unconverged_solves;
+        self.linear_residual = self.linear_residual.max(other.linear_residual);
+        self.newton_iterations += other.newton_iterations;
+        self.newton_residual = self.newton_residual.max(other.newton_residual);
     }
 }
 

@@ -50,7 +50,7 @@ mod system;
 
 pub use builder::{SpringEntry, SystemBuilder};
 pub use energy::Energy;
-pub use error::{BuildError, Quantity, SpringParameter, StepError};
+pub use error::{BuildError, ParameterError, Quantity, SpringParameter, StepError};
 pub use forces::{ForceEvaluator, PARALLEL_MIN_SPRINGS, Parallelism};
 pub use integrator::{Integrator, StepReport, check_step};
 pub use observer::{EnergyLog, EnergySample, Observer, Simulation, StrainLog};

@@ -161,21 +161,41 @@ impl Spring {
     /// `∂fᵢ/∂xᵢ = −H`; see [`CompressedSprings`] for the compressed case.
     #[must_use]
     pub fn stiffness_block(&self, xi: Vec3, xj: Vec3, compressed: CompressedSprings) -> Mat3 {
+        self.linearize(xi, xj, compressed).1
+    }
+
+    /// Elastic force on `i` and stiffness block `H` together, computing the
+    /// direction once: what an implicit solver needs per spring.
+    #[must_use]
+    pub fn linearize(&self, xi: Vec3, xj: Vec3, compressed: CompressedSprings) -> (Vec3, Mat3) {
         if self.rest_length == 0.0 {
-            return Mat3::identity() * self.stiffness;
+            return (
+                -self.stiffness * (xi - xj),
+                Mat3::identity() * self.stiffness,
+            );
         }
         let Some((d, l)) = direction(xi, xj) else {
-            return Mat3::zeros();
+            return (Vec3::zeros(), Mat3::zeros());
         };
+        let force = -self.stiffness * (l - self.rest_length) * d;
         let mut transverse = 1.0 - self.rest_length / l;
         if compressed == CompressedSprings::Clamped {
             transverse = transverse.max(0.0);
         }
         if !transverse.is_finite() {
-            return Mat3::zeros();
+            return (force, Mat3::zeros());
         }
         let ddt = d * d.transpose();
-        self.stiffness * (ddt + transverse * (Mat3::identity() - ddt))
+        (
+            force,
+            self.stiffness * (ddt + transverse * (Mat3::identity() - ddt)),
+        )
+    }
+
+    /// Unit direction `d = (xᵢ − xⱼ)/l`, or zero when the ends coincide.
+    #[must_use]
+    pub fn direction(&self, xi: Vec3, xj: Vec3) -> Vec3 {
+        direction(xi, xj).map_or_else(Vec3::zeros, |(d, _)| d)
     }
 
     /// Damping block `D = c d dᵀ`, so that `∂fᵢ/∂vᵢ = −D`. Zero when the ends

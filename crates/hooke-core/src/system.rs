@@ -38,7 +38,11 @@ pub(crate) fn fresh_system_id() -> u64 {
 }
 
 impl System {
-    pub(crate) fn id(&self) -> u64 {
+    /// A number that identifies this system within the process (a clone
+    /// shares it), for caches keyed on the system, such as a solver's
+    /// sparsity pattern.
+    #[must_use]
+    pub fn id(&self) -> u64 {
         self.id
     }
 

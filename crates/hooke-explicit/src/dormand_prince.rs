@@ -1,10 +1,10 @@
 //! Adaptive-step Dormand–Prince 5(4).
 
 use hooke_core::{
-    ForceEvaluator, History, Integrator, State, StepError, StepReport, System, Vec3, check_step,
+    ForceEvaluator, History, Integrator, ParameterError, State, StepError, StepReport, System,
+    Vec3, check_step,
 };
 
-use crate::error::ParameterError;
 use crate::ops::{combine, fit};
 
 /// Stage nodes are implied by `A`; the rows of the Butcher matrix, stage 2..7.

@@ -47,7 +47,6 @@
 
 mod beeman;
 mod dormand_prince;
-mod error;
 mod euler;
 mod gear;
 mod heun;
@@ -61,7 +60,6 @@ mod velocity_verlet;
 
 pub use beeman::Beeman;
 pub use dormand_prince::DormandPrince;
-pub use error::ParameterError;
 pub use euler::ExplicitEuler;
 pub use gear::Gear;
 pub use heun::Heun;

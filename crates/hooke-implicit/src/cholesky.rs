@@ -1,0 +1,223 @@
+//! Sparse Cholesky with the symbolic analysis done once per topology (faer).
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Side};
+use hooke_core::{Mat3, Spring, StepError, Vec3};
+
+use crate::filter::Filter;
+use crate::matrix::BlockMatrix;
+
+/// A direct solver for the filtered system
+///
+/// ```text
+/// (S A S + I − S) x = S b
+/// ```
+///
+/// whose solution is the one the filtered PCG converges to: `x` lies in the
+/// free subspace (`x = S x`, so constrained components are zero) and solves
+/// `A x = b` there. For a pinned particle `S = 0` and its rows become the
+/// identity, so the matrix stays positive definite whenever `A` is.
+///
+/// The lower triangle of the scalar `3n × 3n` matrix is laid out in
+/// compressed columns once, the fill-reducing ordering (AMD) and symbolic
+/// factorization are computed once, and every solve only copies the filtered
+/// blocks into place, factorizes numerically (`L Lᵀ`) into preallocated
+/// storage and solves, without allocating.
+pub struct SparseCholesky {
+    col_ptr: Vec<u32>,
+    row_idx: Vec<u32>,
+    values: Vec<f64>,
+    /// Per spring, the position of the first entry of each of the three
+    /// columns of its block below the diagonal.
+    spring_columns: Vec<[u32; 3]>,
+    symbolic: SymbolicCholesky<u32>,
+    factor: Vec<f64>,
+    factor_memory: MemBuffer,
+    solve_memory: MemBuffer,
+    rhs: Vec<f64>,
+    par: Par,
+}
+
+impl std::fmt::Debug for SparseCholesky {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SparseCholesky")
+            .field("dofs", &self.rhs.len())
+            .field("nonzeros", &self.values.len())
+            .field("factor_nonzeros", &self.factor.len())
+            .finish_non_exhaustive()
+    }
+}
+
+/// Particle count from which faer factorizes in parallel.
+#[cfg(feature = "parallel")]
+const PARALLEL_MIN_PARTICLES: usize = 4096;
+
+impl SparseCholesky {
+    /// The layout and symbolic factorization for matrices with the pattern of
+    /// `a`, built from `springs`.
+    ///
+    /// # Errors
+    /// [`StepError::SystemTooLarge`] if the scalar matrix does not fit 32-bit
+    /// indices.
+    pub fn new(a: &BlockMatrix, springs: &[Spring]) -> Result<Self, StepError> {
+        let n = a.rows();
+        let dofs = 3 * n;
+        let too_large = || StepError::SystemTooLarge {
+            particles: n,
+            springs: springs.len(),
+        };
+        let nonzeros = 6 * n + 9 * springs.len();
+        let index = |k: usize| u32::try_from(k).map_err(|_| too_large());
+        index(nonzeros)?;
+        // Column 3q + c holds rows 3q + c..3q + 2 of the diagonal block, then
+        // rows 3p..3p + 2 for every neighbour p > q in increasing order.
+        let mut col_ptr = Vec::with_capacity(dofs + 1);
+        let mut row_idx = Vec::with_capacity(nonzeros);
+        let mut spring_columns = vec![[0; 3]; springs.len()];
+        col_ptr.push(0);
+        #[allow(clippy::needless_range_loop)] // `c` is a column within the block
+        for q in 0..n {
+            let below: Vec<_> = a
+                .pattern()
+                .row(q)
+                .iter()
+                .filter(|e| e.column() > q)
+                .collect();
+            for c in 0..3 {
+                row_idx.extend((c..3).map(|r| (3 * q + r) as u32));
+                for e in &below {
+                    spring_columns[e.spring()][c] = row_idx.len() as u32;
+                    row_idx.extend((0..3).map(|r| (3 * e.column() + r) as u32));
+                }
+                col_ptr.push(row_idx.len() as u32);
+            }
+        }
+        let pattern = SymbolicSparseColMatRef::new_checked(dofs, dofs, &col_ptr, None, &row_idx);
+        let symbolic = factorize_symbolic_cholesky(
+            pattern,
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams::default(),
+        )
+        .map_err(|_| too_large())?;
+        let par = parallelism(n);
+        let factor_memory =
+            MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
+        let solve_memory = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par));
+        Ok(Self {
+            factor: vec![0.0; symbolic.len_val()],
+            values: vec![0.0; row_idx.len()],
+            col_ptr,
+            row_idx,
+            spring_columns,
+            symbolic,
+            factor_memory,
+            solve_memory,
+            rhs: vec![0.0; dofs],
+            par,
+        })
+    }
+
+    /// Solves `(S A S + I − S) x = S b`, the filtered system, into `x`.
+    ///
+    /// `springs` must be the endpoints given to [`SparseCholesky::new`].
+    ///
+    /// # Errors
+    /// The particle of the first non-positive pivot if the filtered matrix is
+    /// not positive definite.
+    pub fn solve(
+        &mut self,
+        a: &BlockMatrix,
+        springs: &[Spring],
+        filters: &[Filter],
+        b: &[Vec3],
+        x: &mut [Vec3],
+    ) -> Result<(), usize> {
+        self.fill(a, springs, filters);
+        let dofs = self.rhs.len();
+        let pattern =
+            SymbolicSparseColMatRef::new_checked(dofs, dofs, &self.col_ptr, None, &self.row_idx);
+        let matrix = SparseColMatRef::new(pattern, &self.values);
+        let llt = self
+            .symbolic
+            .factorize_numeric_llt(
+                &mut self.factor,
+                matrix,
+                Side::Lower,
+                LltRegularization::default(),
+                self.par,
+                MemStack::new(&mut self.factor_memory),
+                Default::default(),
+            )
+            .map_err(
+                |faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }| {
+                    let dof = self
+                        .symbolic
+                        .perm()
+                        .map_or(index, |p| p.arrays().0[index] as usize);
+                    dof / 3
+                },
+            )?;
+        for (i, (bi, f)) in b.iter().zip(filters).enumerate() {
+            self.rhs[3 * i..3 * i + 3].copy_from_slice(f.apply(*bi).as_slice());
+        }
+        llt.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut self.rhs, dofs, 1),
+            self.par,
+            MemStack::new(&mut self.solve_memory),
+        );
+        for (i, (xi, f)) in x.iter_mut().zip(filters).enumerate() {
+            *xi = f.apply(Vec3::from_column_slice(&self.rhs[3 * i..3 * i + 3]));
+        }
+        Ok(())
+    }
+
+    /// Copies the lower triangle of `S A S + I − S` into `values`.
+    fn fill(&mut self, a: &BlockMatrix, springs: &[Spring], filters: &[Filter]) {
+        let sandwich = |block: Mat3, left: Filter, right: Filter| match (left, right) {
+            (Filter::Free, Filter::Free) => block,
+            _ => left.matrix() * block * right.matrix(),
+        };
+        for (q, &filter) in filters.iter().enumerate() {
+            let s = filter.matrix();
+            let block = sandwich(*a.diagonal(q), filter, filter) + Mat3::identity() - s;
+            for c in 0..3 {
+                let start = self.col_ptr[3 * q + c] as usize;
+                for r in c..3 {
+                    self.values[start + r - c] = block[(r, c)];
+                }
+            }
+        }
+        for (s, (spring, columns)) in springs.iter().zip(&self.spring_columns).enumerate() {
+            let (p, q) = (spring.i.max(spring.j), spring.i.min(spring.j));
+            let block = sandwich(-a.spring_block(s), filters[p], filters[q]);
+            for (c, &start) in columns.iter().enumerate() {
+                for r in 0..3 {
+                    self.values[start as usize + r] = block[(r, c)];
+                }
+            }
+        }
+    }
+}
+
+/// Sequential for small systems, faer's rayon parallelism for large ones.
+#[cfg(feature = "parallel")]
+fn parallelism(particles: usize) -> Par {
+    if particles >= PARALLEL_MIN_PARTICLES {
+        Par::rayon(0)
+    } else {
+        Par::Seq
+    }
+}
+
+/// Sequential: the `parallel` feature is off.
+#[cfg(not(feature = "parallel"))]
+fn parallelism(_particles: usize) -> Par {
+    Par::Seq
+}

@@ -1,0 +1,95 @@
+//! Per-particle vector operations, data-parallel for large systems.
+
+use hooke_core::Vec3;
+
+/// Particle count from which loops run in parallel (with the `parallel`
+/// feature). Below it a parallel region costs more than it saves: waking a
+/// worker thread takes tens of microseconds on the machines measured (see
+/// the crate documentation).
+pub const PARALLEL_MIN_PARTICLES: usize = 16_384;
+
+/// Rows handed to one rayon task at least.
+#[cfg(feature = "parallel")]
+const MIN_CHUNK: usize = 2048;
+
+/// Calls `f(i, &mut out[i])` for every `i`, in parallel when `out` is long.
+#[inline]
+pub(crate) fn for_each_row<T: Send>(out: &mut [T], f: impl Fn(usize, &mut T) + Sync + Send) {
+    #[cfg(feature = "parallel")]
+    if out.len() >= PARALLEL_MIN_PARTICLES {
+        use rayon::prelude::*;
+        out.par_iter_mut()
+            .enumerate()
+            .with_min_len(MIN_CHUNK)
+            .for_each(|(i, o)| f(i, o));
+        return;
+    }
+    for (i, o) in out.iter_mut().enumerate() {
+        f(i, o);
+    }
+}
+
+/// Calls `f(i, &mut a[i], &mut b[i])` for every `i`, in parallel when long.
+#[inline]
+pub(crate) fn for_each_row2<A: Send, B: Send>(
+    a: &mut [A],
+    b: &mut [B],
+    f: impl Fn(usize, &mut A, &mut B) + Sync + Send,
+) {
+    debug_assert_eq!(a.len(), b.len());
+    #[cfg(feature = "parallel")]
+    if a.len() >= PARALLEL_MIN_PARTICLES {
+        use rayon::prelude::*;
+        a.par_iter_mut()
+            .zip(b.par_iter_mut())
+            .enumerate()
+            .with_min_len(MIN_CHUNK)
+            .for_each(|(i, (ai, bi))| f(i, ai, bi));
+        return;
+    }
+    for (i, (ai, bi)) in a.iter_mut().zip(b.iter_mut()).enumerate() {
+        f(i, ai, bi);
+    }
+}
+
+/// Calls `f(i, &mut a[i], &mut b[i], &mut c[i])` for every `i`, in parallel
+/// when long.
+#[inline]
+pub(crate) fn for_each_row3<A: Send, B: Send, C: Send>(
+    a: &mut [A],
+    b: &mut [B],
+    c: &mut [C],
+    f: impl Fn(usize, &mut A, &mut B, &mut C) + Sync + Send,
+) {
+    debug_assert!(a.len() == b.len() && b.len() == c.len());
+    #[cfg(feature = "parallel")]
+    if a.len() >= PARALLEL_MIN_PARTICLES {
+        use rayon::prelude::*;
+        a.par_iter_mut()
+            .zip(b.par_iter_mut())
+            .zip(c.par_iter_mut())
+            .enumerate()
+            .with_min_len(MIN_CHUNK)
+            .for_each(|(i, ((ai, bi), ci))| f(i, ai, bi, ci));
+        return;
+    }
+    for (i, ((ai, bi), ci)) in a.iter_mut().zip(b.iter_mut()).zip(c.iter_mut()).enumerate() {
+        f(i, ai, bi, ci);
+    }
+}
+
+/// `Σᵢ f(i)`, in parallel when `n` is large.
+#[inline]
+pub(crate) fn sum(n: usize, f: impl Fn(usize) -> f64 + Sync + Send) -> f64 {
+    #[cfg(feature = "parallel")]
+    if n >= PARALLEL_MIN_PARTICLES {
+        use rayon::prelude::*;
+        return (0..n).into_par_iter().with_min_len(MIN_CHUNK).map(f).sum();
+    }
+    (0..n).map(f).sum()
+}
+
+/// `Σᵢ aᵢ·bᵢ`.
+pub(crate) fn dot(a: &[Vec3], b: &[Vec3]) -> f64 {
+    sum(a.len(), |i| a[i].dot(&b[i]))
+}

@@ -1,0 +1,268 @@
+//! Backward Euler and BDF2 against theory: the exact amplitude factor of one
+//! step, convergence orders, agreement of the two linear solvers, and Newton
+//! iterations that solve the nonlinear step equations.
+
+mod common;
+
+use hooke::core::{CompressedSprings, ForceEvaluator};
+use hooke::implicit::{
+    Assembler, BlockJacobi, BlockMatrix, Filter, Implicit, LinearSolver, Linearization, Pattern,
+    PcgSettings, SparseCholesky, cg,
+};
+use hooke::prelude::*;
+
+fn pcg(tolerance: f64) -> LinearSolver {
+    LinearSolver::Pcg(PcgSettings::new(tolerance, 10_000).unwrap())
+}
+
+/// `√(x² + v²/ω²)` of the bob.
+fn amplitude(state: &State, omega: f64) -> f64 {
+    let (x, v) = (
+        state.positions()[Oscillator::BOB].x,
+        state.velocities()[Oscillator::BOB].x,
+    );
+    (x * x + v * v / (omega * omega)).sqrt()
+}
+
+/// On `x'' = −ω² x` backward Euler maps `ωx + iv` to itself divided by
+/// `1 + iθ`, so one step multiplies the amplitude by exactly `1/√(1 + θ²)`:
+/// to 1e-10, plus the `ε θ²` rounding of forming `v₀ + Δv` when `Δv ≈ −v₀`.
+#[test]
+fn one_backward_euler_step_scales_the_amplitude_by_theory() {
+    let mut oscillator = Oscillator::undamped(2.0, 200.0); // ω = 10 rad/s
+    oscillator.displacement = 0.3;
+    oscillator.velocity = -4.0;
+    let system = oscillator.system().unwrap();
+    let omega = oscillator.omega();
+    for theta in [1e-3, 0.1, 1.0, 10.0, 1e4] {
+        let tolerance = 1e-10 + 1e-15 * theta * theta;
+        for solver in [LinearSolver::Cholesky, pcg(1e-13)] {
+            let mut state = system.initial_state();
+            let before = amplitude(&state, omega);
+            Implicit::backward_euler()
+                .with_solver(solver)
+                .step(&system, &mut state, theta / omega)
+                .unwrap();
+            let ratio = amplitude(&state, omega) / before;
+            let theory = 1.0 / (1.0 + theta * theta).sqrt();
+            assert!(
+                (ratio - theory).abs() <= tolerance * theory,
+                "θ = {theta}: ratio {ratio}, theory {theory}"
+            );
+        }
+    }
+}
+
+/// Observed orders on the damped oscillator: 1 for backward Euler, 2 for BDF2.
+#[test]
+fn backward_euler_is_first_order_and_bdf2_second() {
+    let oscillator = Oscillator::damped(1.0, 1.0, 0.2);
+    let dts: Vec<f64> = (0..4).map(|k| 0.05 / f64::from(1 << k)).collect();
+    for (scheme, expected) in [
+        (Implicit::backward_euler as fn() -> Implicit, 1.0),
+        (Implicit::bdf2, 2.0),
+    ] {
+        let errors: Vec<f64> = dts
+            .iter()
+            .map(|&dt| {
+                let mut integrator = scheme().with_solver(LinearSolver::Cholesky);
+                common::oscillator_error(&mut integrator, &oscillator, dt, 10.0)
+            })
+            .collect();
+        let order = common::log_log_slope(&dts, &errors);
+        let name = scheme().name();
+        eprintln!("{name}: observed order {order:.3}, errors {errors:?}");
+        assert!(
+            (order - expected).abs() <= 0.15,
+            "{name}: observed order {order:.3}, expected {expected}"
+        );
+    }
+}
+
+/// BDF2 preserves the undamped oscillator's amplitude to second order: the
+/// amplitude error after 10 s falls fourfold when the step halves (its
+/// backward-Euler start loses `O(h²)` once; each BDF2 step only `O(h⁴)`).
+#[test]
+fn bdf2_preserves_the_amplitude_to_second_order() {
+    let oscillator = Oscillator::undamped(1.0, 1.0);
+    let system = oscillator.system().unwrap();
+    let dts: Vec<f64> = (0..4).map(|k| 0.05 / f64::from(1 << k)).collect();
+    let errors: Vec<f64> = dts
+        .iter()
+        .map(|&dt| {
+            let mut integrator = Implicit::bdf2().with_solver(LinearSolver::Cholesky);
+            let mut state = system.initial_state();
+            for _ in 0..(10.0 / dt).round() as usize {
+                integrator.step(&system, &mut state, dt).unwrap();
+            }
+            (1.0 - amplitude(&state, 1.0)).abs()
+        })
+        .collect();
+    let order = common::log_log_slope(&dts, &errors);
+    assert!(
+        (order - 2.0).abs() <= 0.15,
+        "amplitude order {order:.3}, errors {errors:?}"
+    );
+}
+
+/// A stretched, damped, moving sheet with gravity and pins.
+fn busy_sheet(n: usize) -> (System, State) {
+    let system = Sheet {
+        stiffness: 500.0,
+        damping: 0.2,
+        air_damping: 0.05,
+        ..Sheet::new(n)
+    }
+    .system()
+    .unwrap();
+    let mut state = system.initial_state();
+    for (k, x) in state.positions_mut().iter_mut().enumerate() {
+        *x *= 1.05;
+        x.y = 0.02 * (k as f64 * 0.7).sin();
+    }
+    for (k, v) in state.velocities_mut().iter_mut().enumerate() {
+        *v = Vec3::new((k as f64).sin(), (k as f64 * 1.3).cos(), 0.5);
+    }
+    (system, state)
+}
+
+/// The two solvers compute the same step: velocities agree to the PCG
+/// tolerance, and pinned particles keep their velocity exactly.
+#[test]
+fn pcg_and_cholesky_give_the_same_step() {
+    let (system, start) = busy_sheet(12);
+    for scheme in [Implicit::backward_euler as fn() -> Implicit, Implicit::bdf2] {
+        let (mut a, mut b) = (start.clone(), start.clone());
+        let (mut with_pcg, mut with_cholesky) = (
+            scheme().with_solver(pcg(1e-12)),
+            scheme().with_solver(LinearSolver::Cholesky),
+        );
+        for _ in 0..3 {
+            with_pcg.step(&system, &mut a, 0.02).unwrap();
+            with_cholesky.step(&system, &mut b, 0.02).unwrap();
+        }
+        let scale = b.velocities().iter().map(|v| v.norm()).fold(0.0, f64::max);
+        for (i, (va, vb)) in a.velocities().iter().zip(b.velocities()).enumerate() {
+            assert!(
+                (va - vb).norm() <= 1e-9 * scale,
+                "particle {i}: {va:?} vs {vb:?}"
+            );
+        }
+        for pinned in system.pinned() {
+            assert_eq!(a.velocities()[pinned], start.velocities()[pinned]);
+            assert_eq!(b.velocities()[pinned], start.velocities()[pinned]);
+        }
+    }
+}
+
+/// With every kind of filter — free, plane, line, fixed — the filtered PCG
+/// and the Cholesky of `S A S + I − S` solve the same constrained system, and
+/// the solution has no component in a constrained direction.
+#[test]
+fn filtered_solvers_agree_for_every_kind_of_constraint() {
+    let (system, state) = busy_sheet(8);
+    let n = system.particle_count();
+    let mut a = BlockMatrix::zeros(Pattern::new(&system).unwrap(), system.springs().len());
+    let (mut jacobi, mut rhs) = (BlockJacobi::default(), vec![Vec3::zeros(); n]);
+    let u: Vec<Vec3> = state.velocities().iter().map(|v| 0.05 * v).collect();
+    let lin = Linearization {
+        positions: state.positions(),
+        velocities: state.velocities(),
+        displacement: Some(&u),
+        inertia: &vec![Vec3::zeros(); n],
+        beta_h: 0.05,
+        compressed: CompressedSprings::Clamped,
+        freeze_directions: true,
+    };
+    Assembler::default()
+        .assemble(&system, &lin, &mut a, &mut jacobi, &mut rhs, 0.0)
+        .unwrap();
+    let normal = Vec3::new(1.0, 2.0, 2.0) / 3.0;
+    let filters: Vec<Filter> = (0..n)
+        .map(|i| match i % 5 {
+            1 => Filter::Plane(normal),
+            2 => Filter::Line(normal),
+            3 if i < 20 => Filter::Fixed,
+            _ => Filter::Free,
+        })
+        .collect();
+    let mut iterative = vec![Vec3::zeros(); n];
+    let settings = PcgSettings::new(1e-13, 10_000).unwrap();
+    cg::solve(
+        &a,
+        &jacobi,
+        &filters,
+        &rhs,
+        &mut iterative,
+        settings,
+        &mut Default::default(),
+    )
+    .unwrap();
+    let mut direct = vec![Vec3::zeros(); n];
+    SparseCholesky::new(&a, system.springs())
+        .unwrap()
+        .solve(&a, system.springs(), &filters, &rhs, &mut direct)
+        .unwrap();
+    let scale = direct.iter().map(|x| x.norm()).fold(0.0, f64::max);
+    for (i, ((p, c), f)) in iterative.iter().zip(&direct).zip(&filters).enumerate() {
+        assert!(
+            (p - c).norm() <= 1e-9 * scale,
+            "particle {i}: {p:?} vs {c:?}"
+        );
+        assert!(
+            (f.apply(*c) - c).norm() <= 1e-15 * scale,
+            "particle {i} leaves its constraint"
+        );
+    }
+    // The free part is a solution: S(b − A x) = 0.
+    let mut ax = vec![Vec3::zeros(); n];
+    a.apply(&direct, &mut ax);
+    let b_scale = rhs.iter().map(|b| b.norm()).fold(0.0, f64::max);
+    for (i, f) in filters.iter().enumerate() {
+        assert!(
+            f.apply(rhs[i] - ax[i]).norm() <= 1e-10 * b_scale,
+            "particle {i}: residual"
+        );
+    }
+}
+
+/// With enough Newton iterations the step solves the backward-Euler
+/// equations themselves: `M(v₁ − v₀) = h f(x₁, v₁)` with `x₁ = x₀ + h v₁`,
+/// checked with the explicit side's independent force evaluation.
+#[test]
+fn newton_iterations_solve_the_nonlinear_step() {
+    // Large amplitude and step: the bead's restoring force is far from linear.
+    let bead = BeadOnString {
+        mass: 1.0,
+        stiffness: 1e4,
+        half_span: 1.0,
+        amplitude: 3.0,
+        air_damping: 5.0,
+    };
+    let system = bead.system().unwrap();
+    let h = 0.05;
+    let residual = |iterations: usize| {
+        let mut state = system.initial_state();
+        let mut integrator = Implicit::backward_euler()
+            .with_solver(LinearSolver::Cholesky)
+            .with_newton(iterations, 1e-12)
+            .unwrap();
+        let report = integrator.step(&system, &mut state, h).unwrap();
+        let mut f = vec![Vec3::zeros(); 3];
+        ForceEvaluator::default().forces(&system, state.positions(), state.velocities(), &mut f);
+        let i = BeadOnString::BEAD;
+        let momentum = bead.mass * (state.velocities()[i] - system.initial_velocities()[i]);
+        ((momentum - h * f[i]).norm(), report)
+    };
+    let (linearised, _) = residual(1);
+    let (converged, report) = residual(30);
+    assert!(
+        linearised > 1.0,
+        "the linearised step should miss: residual {linearised}"
+    );
+    assert!(
+        converged <= 1e-9,
+        "Newton residual {converged} N·s ({report:?})"
+    );
+    assert!(report.newton_iterations < 30 && report.newton_residual <= 1e-12);
+}

@@ -1,0 +1,111 @@
+//! Above `PARALLEL_MIN_PARTICLES` the assembly and the matrix-vector product
+//! run in parallel; they agree with sequential computations done here from
+//! the spring formulas and with faer's scalar sparse product.
+#![cfg(feature = "parallel")]
+
+use faer::sparse::linalg::matmul::sparse_dense_matmul;
+use faer::{Accum, MatMut, MatRef, Par};
+use hooke::core::CompressedSprings;
+use hooke::implicit::{
+    Assembler, BlockJacobi, BlockMatrix, Linearization, PARALLEL_MIN_PARTICLES, Pattern,
+};
+use hooke::prelude::*;
+
+#[test]
+fn parallel_assembly_and_product_match_sequential_computations() {
+    let side = (PARALLEL_MIN_PARTICLES as f64).sqrt().ceil() as usize + 1;
+    let system = Sheet {
+        damping: 0.3,
+        air_damping: 0.02,
+        ..Sheet::new(side)
+    }
+    .system()
+    .unwrap();
+    let n = system.particle_count();
+    let mut state = system.initial_state();
+    for (k, x) in state.positions_mut().iter_mut().enumerate() {
+        *x *= 1.0 + 0.1 * (k as f64 * 0.37).sin();
+    }
+    for (k, v) in state.velocities_mut().iter_mut().enumerate() {
+        *v = Vec3::new((k as f64).cos(), (k as f64 * 0.3).sin(), 0.2);
+    }
+    let (x, v) = (state.positions(), state.velocities());
+    let h = 0.01;
+    let u: Vec<Vec3> = v.iter().map(|vi| h * vi).collect();
+    let inertia = vec![Vec3::zeros(); n];
+    let mut a = BlockMatrix::zeros(Pattern::new(&system).unwrap(), system.springs().len());
+    let (mut jacobi, mut b) = (BlockJacobi::default(), vec![Vec3::zeros(); n]);
+    let lin = Linearization {
+        positions: x,
+        velocities: v,
+        displacement: Some(&u),
+        inertia: &inertia,
+        beta_h: h,
+        compressed: CompressedSprings::Clamped,
+        freeze_directions: true,
+    };
+    Assembler::default()
+        .assemble(&system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+        .unwrap();
+
+    // Sequentially, from the spring formulas: A = M + hC + h²K, b = h(f − K u).
+    let masses = system.masses();
+    let gamma = system.air_damping().unwrap();
+    let mut diagonal: Vec<_> = masses
+        .iter()
+        .map(|&m| (m + h * gamma) * hooke::core::Mat3::identity())
+        .collect();
+    let mut rhs: Vec<Vec3> = (0..n)
+        .map(|i| h * (masses[i] * Vec3::new(0.0, -9.81, 0.0) - gamma * v[i]))
+        .collect();
+    for (s, spring) in system.springs().iter().enumerate() {
+        let (i, j) = (spring.i, spring.j);
+        let k = h * h * spring.stiffness_block(x[i], x[j], CompressedSprings::Clamped)
+            + h * spring.damping_block(x[i], x[j]);
+        assert!(
+            (a.spring_block(s) - k).norm() <= 1e-12 * k.norm().max(1e-300),
+            "spring {s}"
+        );
+        diagonal[i] += k;
+        diagonal[j] += k;
+        let stiffness = spring.stiffness_block(x[i], x[j], CompressedSprings::Clamped);
+        let share = h * (spring.force(x[i], x[j], v[i], v[j]) - stiffness * (u[i] - u[j]));
+        rhs[i] += share;
+        rhs[j] -= share;
+    }
+    for i in 0..n {
+        assert!(
+            (a.diagonal(i) - diagonal[i]).norm() <= 1e-12 * diagonal[i].norm(),
+            "diagonal {i}"
+        );
+        assert!(
+            (b[i] - rhs[i]).norm() <= 1e-10 * (1.0 + rhs[i].norm()),
+            "rhs {i}: {:?} vs {:?}",
+            b[i],
+            rhs[i]
+        );
+    }
+
+    // The parallel block product against faer's sequential scalar product.
+    let mut y = vec![Vec3::zeros(); n];
+    a.apply(v, &mut y);
+    let flat: Vec<f64> = v.iter().flat_map(|vi| vi.iter().copied()).collect();
+    let mut expected = vec![0.0; 3 * n];
+    let scalar = a.to_scalar();
+    sparse_dense_matmul(
+        MatMut::from_column_major_slice_mut(&mut expected, 3 * n, 1),
+        Accum::Replace,
+        scalar.as_ref(),
+        MatRef::from_column_major_slice(&flat, 3 * n, 1),
+        1.0,
+        Par::Seq,
+    );
+    for i in 0..n {
+        let e = Vec3::from_column_slice(&expected[3 * i..3 * i + 3]);
+        assert!(
+            (y[i] - e).norm() <= 1e-10 * (1.0 + e.norm()),
+            "product row {i}: {:?} vs {e:?}",
+            y[i]
+        );
+    }
+}
