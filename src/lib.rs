@@ -42,7 +42,7 @@ pub enum Error {
     /// A step could not be taken.
     #[error(transparent)]
     Step(#[from] hooke_core::StepError),
-    /// An integrator parameter is out of range.
+    /// An integrator or solver parameter is out of range.
     #[error(transparent)]
     Parameter(#[from] hooke_core::ParameterError),
 }

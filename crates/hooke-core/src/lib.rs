@@ -54,7 +54,7 @@ pub use error::{BuildError, ParameterError, Quantity, SpringParameter, StepError
 pub use forces::{ForceEvaluator, PARALLEL_MIN_SPRINGS, Parallelism};
 pub use integrator::{Integrator, StepReport, check_step};
 pub use observer::{EnergyLog, EnergySample, Observer, Simulation, StrainLog};
-pub use spring::{CompressedSprings, Spring};
+pub use spring::{CompressedSprings, Linearized, Spring};
 pub use state::{History, State};
 pub use system::System;
 

@@ -43,6 +43,40 @@ pub enum CompressedSprings {
     Exact,
 }
 
+/// A spring's elastic force on its first end and its stiffness block in
+/// factored form, `H = k_∥ d dᵀ + k_⊥ (I − d dᵀ)`: axial stiffness
+/// `k_∥ = k`, transverse stiffness `k_⊥ = k (1 − L/l)` (clamped at zero
+/// under compression by default).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Linearized {
+    /// Elastic force on `i`, `−k (l − L) d`.
+    pub force: Vec3,
+    /// Unit direction `d` from `xⱼ` to `xᵢ` (zero where it is undefined and
+    /// irrelevant).
+    pub direction: Vec3,
+    /// Stiffness along `d`, `k_∥`.
+    pub axial: f64,
+    /// Stiffness across `d`, `k_⊥`.
+    pub transverse: f64,
+}
+
+impl Linearized {
+    /// `H v` without forming `H`.
+    #[must_use]
+    #[inline]
+    pub fn apply(&self, v: Vec3) -> Vec3 {
+        let along = self.direction.dot(&v) * self.direction;
+        self.axial * along + self.transverse * (v - along)
+    }
+
+    /// The block `H = k_∥ d dᵀ + k_⊥ (I − d dᵀ)`.
+    #[must_use]
+    pub fn block(&self) -> Mat3 {
+        let ddt = self.direction * self.direction.transpose();
+        self.axial * ddt + self.transverse * (Mat3::identity() - ddt)
+    }
+}
+
 /// A spring between particles `i` and `j`.
 ///
 /// The physics methods take the end positions (and velocities) directly, so
@@ -84,6 +118,7 @@ fn direction(xi: Vec3, xj: Vec3) -> Option<(Vec3, f64)> {
 impl Spring {
     /// Current length `l = |xᵢ − xⱼ|`.
     #[must_use]
+    #[inline]
     pub fn length(&self, xi: Vec3, xj: Vec3) -> f64 {
         (xi - xj).norm()
     }
@@ -97,6 +132,7 @@ impl Spring {
 
     /// Elastic energy `½ k (l − L)²`.
     #[must_use]
+    #[inline]
     pub fn energy(&self, xi: Vec3, xj: Vec3) -> f64 {
         let stretch = self.length(xi, xj) - self.rest_length;
         0.5 * self.stiffness * stretch * stretch
@@ -105,6 +141,7 @@ impl Spring {
     /// Elastic force on particle `i`, `−k (l − L) d`; the force on `j` is its
     /// negative.
     #[must_use]
+    #[inline]
     pub fn elastic_force(&self, xi: Vec3, xj: Vec3) -> Vec3 {
         if self.rest_length == 0.0 {
             return -self.stiffness * (xi - xj);
@@ -118,6 +155,7 @@ impl Spring {
     /// Damping force on particle `i`, `−c ((vᵢ − vⱼ)·d) d`; the force on `j` is
     /// its negative. Zero when the ends coincide.
     #[must_use]
+    #[inline]
     pub fn damping_force(&self, xi: Vec3, xj: Vec3, vi: Vec3, vj: Vec3) -> Vec3 {
         if self.damping == 0.0 {
             return Vec3::zeros();
@@ -131,6 +169,7 @@ impl Spring {
     /// Total force on particle `i` (elastic plus damping), computing the
     /// direction once.
     #[must_use]
+    #[inline]
     pub fn force(&self, xi: Vec3, xj: Vec3, vi: Vec3, vj: Vec3) -> Vec3 {
         let Some((d, l)) = direction(xi, xj) else {
             return self.elastic_force(xi, xj);
@@ -161,39 +200,57 @@ impl Spring {
     /// `∂fᵢ/∂xᵢ = −H`; see [`CompressedSprings`] for the compressed case.
     #[must_use]
     pub fn stiffness_block(&self, xi: Vec3, xj: Vec3, compressed: CompressedSprings) -> Mat3 {
-        self.linearize(xi, xj, compressed).1
+        self.linearize(xi, xj, compressed).block()
     }
 
-    /// Elastic force on `i` and stiffness block `H` together, computing the
-    /// direction once: what an implicit solver needs per spring.
+    /// Elastic force on `i` and the stiffness block in factored form,
+    /// computing the direction once: what an implicit solver needs per
+    /// spring.
+    ///
+    /// ```
+    /// use hooke_core::{CompressedSprings, Spring, Vec3};
+    /// let s = Spring { i: 0, j: 1, stiffness: 10.0, rest_length: 1.0, damping: 0.0 };
+    /// let (xi, xj) = (Vec3::new(2.0, 0.0, 0.0), Vec3::zeros());
+    /// let lin = s.linearize(xi, xj, CompressedSprings::Clamped);
+    /// assert_eq!((lin.axial, lin.transverse), (10.0, 5.0)); // k and k(1 − L/l)
+    /// assert_eq!(lin.block(), s.stiffness_block(xi, xj, CompressedSprings::Clamped));
+    /// ```
     #[must_use]
-    pub fn linearize(&self, xi: Vec3, xj: Vec3, compressed: CompressedSprings) -> (Vec3, Mat3) {
+    #[inline]
+    pub fn linearize(&self, xi: Vec3, xj: Vec3, compressed: CompressedSprings) -> Linearized {
+        let k = self.stiffness;
         if self.rest_length == 0.0 {
-            return (
-                -self.stiffness * (xi - xj),
-                Mat3::identity() * self.stiffness,
-            );
+            let direction = direction(xi, xj).map_or_else(Vec3::zeros, |(d, _)| d);
+            return Linearized {
+                force: -k * (xi - xj),
+                direction,
+                axial: k,
+                transverse: k,
+            };
         }
         let Some((d, l)) = direction(xi, xj) else {
-            return (Vec3::zeros(), Mat3::zeros());
+            return Linearized::default();
         };
-        let force = -self.stiffness * (l - self.rest_length) * d;
         let mut transverse = 1.0 - self.rest_length / l;
         if compressed == CompressedSprings::Clamped {
             transverse = transverse.max(0.0);
         }
-        if !transverse.is_finite() {
-            return (force, Mat3::zeros());
+        Linearized {
+            force: -k * (l - self.rest_length) * d,
+            direction: d,
+            axial: k,
+            // Beyond rounding (ends closer than 1e-308 L) the factor is unbounded.
+            transverse: if transverse.is_finite() {
+                k * transverse
+            } else {
+                0.0
+            },
         }
-        let ddt = d * d.transpose();
-        (
-            force,
-            self.stiffness * (ddt + transverse * (Mat3::identity() - ddt)),
-        )
     }
 
     /// Unit direction `d = (xᵢ − xⱼ)/l`, or zero when the ends coincide.
     #[must_use]
+    #[inline]
     pub fn direction(&self, xi: Vec3, xj: Vec3) -> Vec3 {
         direction(xi, xj).map_or_else(Vec3::zeros, |(d, _)| d)
     }

@@ -16,31 +16,27 @@
 //! `u = 0` and the right-hand side is minus the residual.
 //!
 //! Each spring `s = (i, j)` contributes `K_s = βh c d dᵀ + β²h² H_s` and the
-//! right-hand-side share `βh [f_s − H_s (uᵢ − uⱼ)]`. Pass one computes them
+//! right-hand-side share `βh [f_s − H_s (uᵢ − uⱼ)]`, built as a symmetric
+//! block from the factored Hessian `H_s = k_∥ d dᵀ + k_⊥ (I − d dᵀ)` that
+//! `hooke-core` returns. Pass one computes them
 //! per spring (in parallel, each spring writes only its own slot); pass two
 //! builds each row (in parallel, each row writes only itself): the diagonal
 //! block is `(mᵢ + βhγ) I + Σ K_s` over the springs at `i` — the off-diagonal
 //! blocks are `−K_s`, so every block row sums to the mass and air-damping
-//! term — the right-hand side gathers the spring shares, and the Cholesky
-//! factor of the diagonal block both checks that it is positive definite and
-//! gives the block-Jacobi inverse. Damping directions `d` are frozen at the step's
+//! term — the right-hand side gathers the spring shares, and inverting the
+//! diagonal block both checks that it is positive definite and gives the
+//! block-Jacobi inverse. Damping directions `d` are frozen at the step's
 //! start, as Baraff & Witkin's Jacobian leaves out the damping force's
 //! dependence on positions.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use hooke_core::{CompressedSprings, Mat3, StepError, System, Vec3};
+use hooke_core::{CompressedSprings, StepError, System, Vec3};
 
+use crate::block::SymBlock;
 use crate::cg::BlockJacobi;
 use crate::matrix::BlockMatrix;
-use crate::vector::{for_each_row2, for_each_row3, sum};
-
-/// Per spring: its right-hand-side share and its frozen damping direction.
-#[derive(Debug, Clone, Copy, Default)]
-struct SpringScratch {
-    rhs: Vec3,
-    direction: Vec3,
-}
+use crate::vector::{for_each_row3, sum};
 
 /// Where and how to linearise.
 #[derive(Debug, Clone, Copy)]
@@ -93,7 +89,10 @@ pub struct Linearization<'a> {
 /// ```
 #[derive(Debug, Clone, Default)]
 pub struct Assembler {
-    springs: Vec<SpringScratch>,
+    /// Per spring: its share of the right-hand side.
+    shares: Vec<Vec3>,
+    /// Per spring: its damping direction, frozen at the step's start.
+    directions: Vec<Vec3>,
 }
 
 impl Assembler {
@@ -119,30 +118,42 @@ impl Assembler {
         time: f64,
     ) -> Result<(), StepError> {
         let n = system.particle_count();
-        self.springs
-            .resize(system.springs().len(), SpringScratch::default());
-        jacobi.inverses.resize(n, Mat3::zeros());
+        let m = system.springs().len();
+        self.shares.resize(m, Vec3::zeros());
+        self.directions.resize(m, Vec3::zeros());
+        jacobi.inverses.resize(n, SymBlock::default());
         let (bh, bh2) = (lin.beta_h, lin.beta_h * lin.beta_h);
         let (x, v) = (lin.positions, lin.velocities);
 
-        for_each_row2(&mut a.springs, &mut self.springs, |k, block, scratch| {
-            let s = &system.springs()[k];
-            let (force, stiffness) = s.linearize(x[s.i], x[s.j], lin.compressed);
-            let mut shared = force;
-            if let Some(u) = lin.displacement {
-                shared -= stiffness * (u[s.i] - u[s.j]);
-            }
-            *block = bh2 * stiffness;
-            if s.damping > 0.0 {
-                if lin.freeze_directions {
-                    scratch.direction = s.direction(x[s.i], x[s.j]);
+        let Self { shares, directions } = self;
+        for_each_row3(
+            &mut a.springs,
+            shares,
+            directions,
+            |k, block, share, frozen| {
+                let s = &system.springs()[k];
+                let h = s.linearize(x[s.i], x[s.j], lin.compressed);
+                // β²h² H = β²h² [(k_∥ − k_⊥) d dᵀ + k_⊥ I]
+                *block = SymBlock::rank_one_plus_identity(
+                    bh2 * (h.axial - h.transverse),
+                    h.direction,
+                    bh2 * h.transverse,
+                );
+                let mut shared = h.force;
+                if let Some(u) = lin.displacement {
+                    shared -= h.apply(u[s.i] - u[s.j]);
                 }
-                let d = scratch.direction;
-                shared -= s.damping * d.dot(&(v[s.i] - v[s.j])) * d;
-                *block += bh * s.damping * d * d.transpose();
-            }
-            scratch.rhs = bh * shared;
-        });
+                if s.damping > 0.0 {
+                    if lin.freeze_directions {
+                        *frozen = h.direction;
+                    }
+                    let d = *frozen;
+                    shared -= s.damping * d.dot(&(v[s.i] - v[s.j])) * d;
+                    block.add_assign(&SymBlock::rank_one_plus_identity(bh * s.damping, d, 0.0));
+                }
+                *share = bh * shared;
+            },
+        );
 
         let (masses, gravity, gamma) = (system.masses(), system.gravity(), system.air_damping());
         let BlockMatrix {
@@ -150,7 +161,7 @@ impl Assembler {
             diagonal,
             springs: spring_blocks,
         } = a;
-        let scratch = &self.springs;
+        let shares = &*shares;
         let non_finite = AtomicUsize::new(usize::MAX);
         let not_definite = AtomicUsize::new(usize::MAX);
         for_each_row3(
@@ -159,7 +170,7 @@ impl Assembler {
             b,
             |i, diagonal, inverse, bi| {
                 let m = masses[i];
-                let mut block = Mat3::identity() * (m + bh * gamma.unwrap_or(0.0));
+                let mut block = SymBlock::scaled_identity(m + bh * gamma.unwrap_or(0.0));
                 let mut rhs = lin.inertia[i];
                 if let Some(g) = gravity {
                     rhs += bh * m * g;
@@ -168,21 +179,20 @@ impl Assembler {
                     rhs -= bh * gamma * v[i];
                 }
                 for e in pattern.row(i) {
-                    block += spring_blocks[e.spring()];
-                    rhs += e.sign() * scratch[e.spring()].rhs;
+                    block.add_assign(&spring_blocks[e.spring()]);
+                    rhs += e.sign() * shares[e.spring()];
                 }
                 *diagonal = block;
                 *bi = rhs;
-                if !(block.iter().all(|c| c.is_finite()) && rhs.iter().all(|c| c.is_finite())) {
+                if !(block.is_finite() && rhs.iter().all(|c| c.is_finite())) {
                     non_finite.fetch_min(i, Ordering::Relaxed);
                 }
                 // A principal block of a positive-definite matrix is positive
-                // definite; for a free particle its Cholesky factor also gives
-                // the block-Jacobi inverse. A pinned particle's row is filtered
-                // out.
-                match block.cholesky() {
-                    Some(factor) => *inverse = factor.inverse(),
-                    None if system.is_pinned(i) => *inverse = Mat3::zeros(),
+                // definite; for a free particle the check also yields the
+                // block-Jacobi inverse. A pinned particle's row is filtered out.
+                match block.inverse_if_positive_definite() {
+                    Some(inv) => *inverse = inv,
+                    None if system.is_pinned(i) => *inverse = SymBlock::default(),
                     None => {
                         not_definite.fetch_min(i, Ordering::Relaxed);
                     }
@@ -228,7 +238,7 @@ impl Assembler {
             let s = &system.springs()[k];
             let mut e = s.energy(x[s.i], x[s.j]);
             if s.damping > 0.0 {
-                let rate = self.springs[k].direction.dot(&(v[s.i] - v[s.j]));
+                let rate = self.directions[k].dot(&(v[s.i] - v[s.j]));
                 e += 0.5 * beta_h * s.damping * rate * rate;
             }
             e

@@ -1,7 +1,9 @@
 //! Baraff–Witkin's modified preconditioned conjugate gradient: constraints
 //! act through per-particle filters inside the loop.
 
-use hooke_core::{Mat3, ParameterError, Vec3};
+use hooke_core::{ParameterError, Vec3};
+
+use crate::block::SymBlock;
 
 use crate::filter::{Filter, project};
 use crate::matrix::BlockMatrix;
@@ -35,7 +37,7 @@ pub trait Preconditioner {
 /// of the 3x3 diagonal blocks.
 #[derive(Debug, Clone, Default)]
 pub struct BlockJacobi {
-    pub(crate) inverses: Vec<Mat3>,
+    pub(crate) inverses: Vec<SymBlock>,
 }
 
 impl BlockJacobi {
@@ -44,8 +46,11 @@ impl BlockJacobi {
     /// # Errors
     /// The first particle whose diagonal block is not positive definite.
     pub fn new(a: &BlockMatrix) -> Result<Self, usize> {
-        let inverses = (0..a.rows())
-            .map(|i| a.diagonal(i).cholesky().map(|c| c.inverse()).ok_or(i))
+        let inverses = a
+            .diagonal
+            .iter()
+            .enumerate()
+            .map(|(i, block)| block.inverse_if_positive_definite().ok_or(i))
             .collect::<Result<_, _>>()?;
         Ok(Self { inverses })
     }
@@ -53,7 +58,7 @@ impl BlockJacobi {
 
 impl Preconditioner for BlockJacobi {
     fn apply(&self, r: &[Vec3], z: &mut [Vec3]) {
-        for_each_row(z, |i, zi| *zi = self.inverses[i] * r[i]);
+        for_each_row(z, |i, zi| *zi = self.inverses[i].mul(r[i]));
     }
 }
 

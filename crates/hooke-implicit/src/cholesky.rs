@@ -186,7 +186,7 @@ impl SparseCholesky {
         };
         for (q, &filter) in filters.iter().enumerate() {
             let s = filter.matrix();
-            let block = sandwich(*a.diagonal(q), filter, filter) + Mat3::identity() - s;
+            let block = sandwich(a.diagonal(q), filter, filter) + Mat3::identity() - s;
             for c in 0..3 {
                 let start = self.col_ptr[3 * q + c] as usize;
                 for r in c..3 {

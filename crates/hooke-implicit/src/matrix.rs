@@ -2,6 +2,7 @@
 
 use hooke_core::{Mat3, Vec3};
 
+use crate::block::SymBlock;
 use crate::pattern::Pattern;
 use crate::vector::for_each_row;
 
@@ -9,16 +10,17 @@ use crate::vector::for_each_row;
 /// diagonal block per particle and, for each spring `s = (i, j)`, the
 /// off-diagonal blocks `A_ij = A_ji = −K_s` with `K_s` symmetric.
 ///
-/// Each `K_s` is stored once and both of its off-diagonal positions refer to
-/// it through the [`Pattern`], so a product reads `72 + 2·8` bytes per spring
-/// instead of the `2·(72 + 4)` of a 3x3 block-row format or the
-/// `18·(8 + 8)` of a scalar compressed-column one. The product gathers row by
-/// row, so it runs in parallel without races.
+/// Each `K_s` is stored once, as the six entries of a symmetric block, and
+/// both of its off-diagonal positions refer to it through the [`Pattern`], so
+/// a product reads `48 + 2·8` bytes per spring instead of the `2·(72 + 4)` of
+/// a 3x3 block-row format or the `18·(8 + 8)` of a scalar compressed-column
+/// one. The product gathers row by row, so it runs in parallel without
+/// races.
 #[derive(Debug, Clone)]
 pub struct BlockMatrix {
     pub(crate) pattern: Pattern,
-    pub(crate) diagonal: Vec<Mat3>,
-    pub(crate) springs: Vec<Mat3>,
+    pub(crate) diagonal: Vec<SymBlock>,
+    pub(crate) springs: Vec<SymBlock>,
 }
 
 impl BlockMatrix {
@@ -28,8 +30,8 @@ impl BlockMatrix {
         let rows = pattern.rows();
         Self {
             pattern,
-            diagonal: vec![Mat3::zeros(); rows],
-            springs: vec![Mat3::zeros(); springs],
+            diagonal: vec![SymBlock::default(); rows],
+            springs: vec![SymBlock::default(); springs],
         }
     }
 
@@ -47,15 +49,15 @@ impl BlockMatrix {
 
     /// The diagonal block of particle `i`.
     #[must_use]
-    pub fn diagonal(&self, i: usize) -> &Mat3 {
-        &self.diagonal[i]
+    pub fn diagonal(&self, i: usize) -> Mat3 {
+        self.diagonal[i].to_mat3()
     }
 
     /// The block `K_s` of spring `s`; the matrix holds `−K_s` at `(i, j)` and
     /// `(j, i)`.
     #[must_use]
-    pub fn spring_block(&self, s: usize) -> &Mat3 {
-        &self.springs[s]
+    pub fn spring_block(&self, s: usize) -> Mat3 {
+        self.springs[s].to_mat3()
     }
 
     /// The same matrix as a scalar compressed-column matrix with both
@@ -63,7 +65,7 @@ impl BlockMatrix {
     #[must_use]
     pub fn to_scalar(&self) -> faer::sparse::SparseColMat<usize, f64> {
         let mut triplets = Vec::with_capacity(9 * (self.rows() + self.pattern.entry_count()));
-        let mut push = |row: usize, col: usize, block: &Mat3, sign: f64| {
+        let mut push = |row: usize, col: usize, block: Mat3, sign: f64| {
             for r in 0..3 {
                 for c in 0..3 {
                     triplets.push(faer::sparse::Triplet::new(
@@ -75,9 +77,9 @@ impl BlockMatrix {
             }
         };
         for i in 0..self.rows() {
-            push(i, i, &self.diagonal[i], 1.0);
+            push(i, i, self.diagonal(i), 1.0);
             for e in self.pattern.row(i) {
-                push(i, e.column(), &self.springs[e.spring()], -1.0);
+                push(i, e.column(), self.spring_block(e.spring()), -1.0);
             }
         }
         let dofs = 3 * self.rows();
@@ -102,8 +104,8 @@ impl BlockMatrix {
     pub(crate) fn row_product(&self, i: usize, x: &[Vec3]) -> Vec3 {
         let mut off = Vec3::zeros();
         for e in self.pattern.row(i) {
-            off += self.springs[e.spring()] * x[e.column()];
+            off += self.springs[e.spring()].mul(x[e.column()]);
         }
-        self.diagonal[i] * x[i] - off
+        self.diagonal[i].mul(x[i]) - off
     }
 }
