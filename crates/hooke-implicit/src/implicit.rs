@@ -241,11 +241,11 @@ impl Implicit {
     }
 }
 
-/// The topology-dependent parts for `system`, rebuilt (and the history
-/// cleared) when the system changes or none were built yet.
+/// The topology-dependent parts for `system`, rebuilt when the system
+/// changes or none were built yet (the step's history is keyed on the system
+/// too, so it restarts then).
 fn topology<'a>(
     cached: &'a mut Option<Topology>,
-    history: &mut History,
     solver: LinearSolver,
     system: &System,
 ) -> Result<&'a mut Topology, StepError> {
@@ -267,7 +267,6 @@ fn topology<'a>(
                 }
             })
             .collect();
-        history.clear();
         *cached = Some(Topology {
             system: system.id(),
             matrix,
@@ -333,7 +332,7 @@ impl Integrator for Implicit {
             ..StepReport::default()
         };
         let (compressed, solver, strict) = (self.compressed, self.solver, self.strict);
-        let topology = topology(&mut self.topology, &mut self.history, solver, system)?;
+        let topology = topology(&mut self.topology, solver, system)?;
         let w = &mut self.work;
         let lin = Linearization {
             positions: x0,
@@ -344,24 +343,19 @@ impl Integrator for Implicit {
             compressed,
             freeze_directions: true,
         };
-        self.assembler.assemble(
-            system,
-            &lin,
-            &mut topology.matrix,
-            &mut topology.jacobi,
-            &mut w.b,
-            time,
-        )?;
-        report.force_evaluations += 1;
-        linear_solve(
-            topology,
+        let solve = Solve {
             system,
             solver,
             strict,
-            &w.b,
+            time,
+        };
+        solve.linearised(
+            &mut self.assembler,
+            topology,
+            &lin,
+            &mut w.b,
             &mut w.dv,
             &mut w.pcg,
-            time,
             &mut report,
         )?;
         for_each_row(&mut w.v, |i, v| *v = v0[i] + w.dv[i]);
@@ -380,25 +374,14 @@ impl Integrator for Implicit {
                 compressed,
                 freeze_directions: false,
             };
-            self.assembler.assemble(
-                system,
-                &lin,
-                &mut topology.matrix,
-                &mut topology.jacobi,
-                &mut w.b,
-                time,
-            )?;
-            report.force_evaluations += 1;
             w.delta.fill(Vec3::zeros());
-            linear_solve(
+            solve.linearised(
+                &mut self.assembler,
                 topology,
-                system,
-                solver,
-                strict,
-                &w.b,
+                &lin,
+                &mut w.b,
                 &mut w.delta,
                 &mut w.pcg,
-                time,
                 &mut report,
             )?;
             // The Newton step J⁻¹(−g) measures the residual in velocity units.
@@ -454,64 +437,83 @@ impl Integrator for Implicit {
     }
 }
 
-/// Solves the assembled system into `x` (a warm start on entry), recording
-/// the solve in `report`.
-#[allow(clippy::too_many_arguments)]
-fn linear_solve(
-    topology: &mut Topology,
-    system: &System,
+/// What every linear solve of a step shares.
+#[derive(Clone, Copy)]
+struct Solve<'a> {
+    system: &'a System,
     solver: LinearSolver,
     strict: bool,
-    b: &[Vec3],
-    x: &mut [Vec3],
-    workspace: &mut PcgWorkspace,
     time: f64,
-    report: &mut StepReport,
-) -> Result<(), StepError> {
-    report.linear_solves += 1;
-    let Topology {
-        matrix,
-        jacobi,
-        filters,
-        cholesky,
-        ..
-    } = topology;
-    match solver {
-        LinearSolver::Pcg(settings) => {
-            let info = match cg::solve(matrix, jacobi, filters, b, x, settings, workspace) {
-                Ok(info) => info,
-                Err(PcgError::NoConvergence(info)) if !strict => {
-                    report.unconverged_solves += 1;
-                    info
-                }
-                Err(PcgError::NoConvergence(info)) => {
-                    return Err(StepError::NoConvergence {
+}
+
+impl Solve<'_> {
+    /// Assembles the linearisation `lin` into the topology's matrix and `b`,
+    /// then solves into `x` (a warm start on entry), recording both in
+    /// `report`.
+    #[allow(clippy::too_many_arguments)]
+    fn linearised(
+        self,
+        assembler: &mut Assembler,
+        topology: &mut Topology,
+        lin: &Linearization<'_>,
+        b: &mut [Vec3],
+        x: &mut [Vec3],
+        workspace: &mut PcgWorkspace,
+        report: &mut StepReport,
+    ) -> Result<(), StepError> {
+        let Self {
+            system,
+            solver,
+            strict,
+            time,
+        } = self;
+        let Topology {
+            matrix,
+            jacobi,
+            filters,
+            cholesky,
+            ..
+        } = topology;
+        assembler.assemble(system, lin, matrix, jacobi, b, time)?;
+        report.force_evaluations += 1;
+        report.linear_solves += 1;
+        match solver {
+            LinearSolver::Pcg(settings) => {
+                let info = match cg::solve(matrix, jacobi, filters, b, x, settings, workspace) {
+                    Ok(info) => info,
+                    Err(PcgError::NoConvergence(info)) if !strict => {
+                        report.unconverged_solves += 1;
+                        info
+                    }
+                    Err(PcgError::NoConvergence(info)) => {
+                        return Err(StepError::NoConvergence {
+                            time,
+                            iterations: info.iterations,
+                            residual: info.residual,
+                        });
+                    }
+                    Err(PcgError::NotPositiveDefinite(_)) => {
+                        return Err(StepError::NotPositiveDefinite {
+                            time,
+                            particle: None,
+                        });
+                    }
+                };
+                report.linear_iterations += info.iterations;
+                report.linear_residual = report.linear_residual.max(info.residual);
+            }
+            LinearSolver::Cholesky => {
+                let factor = cholesky
+                    .as_mut()
+                    .expect("built with the topology for this solver");
+                factor
+                    .solve(matrix, system.springs(), filters, b, x)
+                    .map_err(|particle| StepError::NotPositiveDefinite {
                         time,
-                        iterations: info.iterations,
-                        residual: info.residual,
-                    });
-                }
-                Err(PcgError::NotPositiveDefinite(_)) => {
-                    return Err(StepError::NotPositiveDefinite {
-                        time,
-                        particle: None,
-                    });
-                }
-            };
-            report.linear_iterations += info.iterations;
-            report.linear_residual = report.linear_residual.max(info.residual);
+                        particle: Some(particle),
+                    })?;
+            }
         }
-        LinearSolver::Cholesky => {
-            let factor = cholesky
-                .as_mut()
-                .expect("built with the topology for this solver");
-            factor
-                .solve(matrix, system.springs(), filters, b, x)
-                .map_err(|particle| StepError::NotPositiveDefinite {
-                    time,
-                    particle: Some(particle),
-                })?;
-        }
+        Ok(())
     }
-    Ok(())
 }
