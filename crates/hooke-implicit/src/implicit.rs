@@ -6,11 +6,8 @@ use hooke_core::{
 };
 
 use crate::assembly::{Assembler, Linearization};
-use crate::cg::{self, BlockJacobi, PcgError, PcgSettings, PcgWorkspace};
-use crate::cholesky::SparseCholesky;
-use crate::filter::Filter;
-use crate::matrix::BlockMatrix;
-use crate::pattern::Pattern;
+use crate::cg::PcgWorkspace;
+use crate::solver::{LinearSolver, Solve, Topology, topology};
 use crate::vector::{dot, for_each_row, for_each_row2};
 
 /// The time discretisation. Both are implicit, A-stable and L-stable: stiff
@@ -31,23 +28,6 @@ pub enum Scheme {
     /// Responsive Cloth*, SIGGRAPH 2002; Hairer & Wanner, *Solving Ordinary
     /// Differential Equations II*, §V.1).
     Bdf2,
-}
-
-/// How the linear system of each Newton step is solved.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum LinearSolver {
-    /// Baraff–Witkin's constraint-filtered PCG with a block-Jacobi
-    /// preconditioner, warm-started from the previous step's velocity change.
-    Pcg(PcgSettings),
-    /// Sparse Cholesky (`L Lᵀ`, AMD ordering) of the filtered matrix; the
-    /// symbolic factorization is computed once per topology.
-    Cholesky,
-}
-
-impl Default for LinearSolver {
-    fn default() -> Self {
-        Self::Pcg(PcgSettings::default())
-    }
 }
 
 /// A linearly implicit integrator on the assembled mass-spring system
@@ -101,16 +81,6 @@ pub struct Implicit {
     topology: Option<Topology>,
     assembler: Assembler,
     work: Work,
-}
-
-/// What depends on the system's topology only.
-#[derive(Debug)]
-struct Topology {
-    system: u64,
-    matrix: BlockMatrix,
-    jacobi: BlockJacobi,
-    filters: Vec<Filter>,
-    cholesky: Option<SparseCholesky>,
 }
 
 /// Per-particle buffers, kept so that a step does not allocate.
@@ -239,43 +209,6 @@ impl Implicit {
     pub fn scheme(&self) -> Scheme {
         self.scheme
     }
-}
-
-/// The topology-dependent parts for `system`, rebuilt when the system
-/// changes or none were built yet (the step's history is keyed on the system
-/// too, so it restarts then).
-fn topology<'a>(
-    cached: &'a mut Option<Topology>,
-    solver: LinearSolver,
-    system: &System,
-) -> Result<&'a mut Topology, StepError> {
-    if cached.as_ref().is_some_and(|t| t.system != system.id()) {
-        *cached = None;
-    }
-    if cached.is_none() {
-        let matrix = BlockMatrix::zeros(Pattern::new(system)?, system.springs().len());
-        let cholesky = match solver {
-            LinearSolver::Cholesky => Some(SparseCholesky::new(&matrix, system.springs())?),
-            LinearSolver::Pcg(_) => None,
-        };
-        let filters = (0..system.particle_count())
-            .map(|i| {
-                if system.is_pinned(i) {
-                    Filter::Fixed
-                } else {
-                    Filter::Free
-                }
-            })
-            .collect();
-        *cached = Some(Topology {
-            system: system.id(),
-            matrix,
-            jacobi: BlockJacobi::default(),
-            filters,
-            cholesky,
-        });
-    }
-    Ok(cached.as_mut().expect("built above"))
 }
 
 impl Integrator for Implicit {
@@ -434,86 +367,5 @@ impl Integrator for Implicit {
             Scheme::BackwardEuler => "backward-euler",
             Scheme::Bdf2 => "bdf2",
         }
-    }
-}
-
-/// What every linear solve of a step shares.
-#[derive(Clone, Copy)]
-struct Solve<'a> {
-    system: &'a System,
-    solver: LinearSolver,
-    strict: bool,
-    time: f64,
-}
-
-impl Solve<'_> {
-    /// Assembles the linearisation `lin` into the topology's matrix and `b`,
-    /// then solves into `x` (a warm start on entry), recording both in
-    /// `report`.
-    #[allow(clippy::too_many_arguments)]
-    fn linearised(
-        self,
-        assembler: &mut Assembler,
-        topology: &mut Topology,
-        lin: &Linearization<'_>,
-        b: &mut [Vec3],
-        x: &mut [Vec3],
-        workspace: &mut PcgWorkspace,
-        report: &mut StepReport,
-    ) -> Result<(), StepError> {
-        let Self {
-            system,
-            solver,
-            strict,
-            time,
-        } = self;
-        let Topology {
-            matrix,
-            jacobi,
-            filters,
-            cholesky,
-            ..
-        } = topology;
-        assembler.assemble(system, lin, matrix, jacobi, b, time)?;
-        report.force_evaluations += 1;
-        report.linear_solves += 1;
-        match solver {
-            LinearSolver::Pcg(settings) => {
-                let info = match cg::solve(matrix, jacobi, filters, b, x, settings, workspace) {
-                    Ok(info) => info,
-                    Err(PcgError::NoConvergence(info)) if !strict => {
-                        report.unconverged_solves += 1;
-                        info
-                    }
-                    Err(PcgError::NoConvergence(info)) => {
-                        return Err(StepError::NoConvergence {
-                            time,
-                            iterations: info.iterations,
-                            residual: info.residual,
-                        });
-                    }
-                    Err(PcgError::NotPositiveDefinite(_)) => {
-                        return Err(StepError::NotPositiveDefinite {
-                            time,
-                            particle: None,
-                        });
-                    }
-                };
-                report.linear_iterations += info.iterations;
-                report.linear_residual = report.linear_residual.max(info.residual);
-            }
-            LinearSolver::Cholesky => {
-                let factor = cholesky
-                    .as_mut()
-                    .expect("built with the topology for this solver");
-                factor
-                    .solve(matrix, system.springs(), filters, b, x)
-                    .map_err(|particle| StepError::NotPositiveDefinite {
-                        time,
-                        particle: Some(particle),
-                    })?;
-            }
-        }
-        Ok(())
     }
 }

@@ -76,6 +76,7 @@ mod filter;
 mod implicit;
 mod matrix;
 mod pattern;
+mod solver;
 mod vector;
 
 pub use assembly::{Assembler, Linearization};
@@ -83,7 +84,8 @@ pub use block::SymBlock;
 pub use cg::{BlockJacobi, PcgSettings};
 pub use cholesky::SparseCholesky;
 pub use filter::Filter;
-pub use implicit::{Implicit, LinearSolver, Scheme};
+pub use implicit::{Implicit, Scheme};
 pub use matrix::BlockMatrix;
 pub use pattern::{Entry, Pattern};
+pub use solver::LinearSolver;
 pub use vector::PARALLEL_MIN_PARTICLES;
