@@ -18,14 +18,16 @@
 //! Each spring `s = (i, j)` contributes `K_s = βh c d dᵀ + β²h² H_s` and the
 //! right-hand-side share `βh [f_s − H_s (uᵢ − uⱼ)]`, built as a symmetric
 //! block from the factored Hessian `H_s = k_∥ d dᵀ + k_⊥ (I − d dᵀ)` that
-//! `hooke-core` returns. Pass one computes them
-//! per spring (in parallel, each spring writes only its own slot); pass two
-//! builds each row (in parallel, each row writes only itself): the diagonal
-//! block is `(mᵢ + βhγ) I + Σ K_s` over the springs at `i` — the off-diagonal
-//! blocks are `−K_s`, so every block row sums to the mass and air-damping
-//! term — the right-hand side gathers the spring shares, and inverting the
-//! diagonal block both checks that it is positive definite and gives the
-//! block-Jacobi inverse. Damping directions `d` are frozen at the step's
+//! `hooke-core` returns. The off-diagonal blocks are `−K_s`, so every block
+//! row sums to the mass and air-damping term: the diagonal block is
+//! `(mᵢ + βhγ) I + Σ K_s` over the springs at `i`.
+//!
+//! Pass one splits the springs into one contiguous chunk per thread; each
+//! chunk writes its springs' blocks and scatters them, with their
+//! right-hand-side shares, into accumulators of its own, so no two threads
+//! write the same memory. Pass two, per particle, adds the mass term and the
+//! chunks' accumulators, and inverting the diagonal block both checks that it
+//! is positive definite and gives the block-Jacobi inverse. Damping directions `d` are frozen at the step's
 //! start, as Baraff & Witkin's Jacobian leaves out the damping force's
 //! dependence on positions.
 
@@ -36,7 +38,7 @@ use hooke_core::{CompressedSprings, StepError, System, Vec3};
 use crate::block::SymBlock;
 use crate::cg::BlockJacobi;
 use crate::matrix::BlockMatrix;
-use crate::vector::{for_each_row3, sum};
+use crate::vector::{for_each_row3, spring_chunks, sum};
 
 /// Where and how to linearise.
 #[derive(Debug, Clone, Copy)]
@@ -89,8 +91,10 @@ pub struct Linearization<'a> {
 /// ```
 #[derive(Debug, Clone, Default)]
 pub struct Assembler {
-    /// Per spring: its share of the right-hand side.
-    shares: Vec<Vec3>,
+    /// Per chunk of springs: its sums into each particle's diagonal block
+    /// and right-hand side.
+    diagonals: Vec<SymBlock>,
+    rhs: Vec<Vec3>,
     /// Per spring: its damping direction, frozen at the step's start.
     directions: Vec<Vec3>,
 }
@@ -119,19 +123,29 @@ impl Assembler {
     ) -> Result<(), StepError> {
         let n = system.particle_count();
         let m = system.springs().len();
-        self.shares.resize(m, Vec3::zeros());
         self.directions.resize(m, Vec3::zeros());
         jacobi.inverses.resize(n, SymBlock::default());
+        if n == 0 {
+            return Ok(());
+        }
         let (bh, bh2) = (lin.beta_h, lin.beta_h * lin.beta_h);
         let (x, v) = (lin.positions, lin.velocities);
 
-        let Self { shares, directions } = self;
-        for_each_row3(
-            &mut a.springs,
-            shares,
-            directions,
-            |k, block, share, frozen| {
-                let s = &system.springs()[k];
+        // Pass one: each chunk of springs writes its blocks and scatters them,
+        // with its right-hand-side shares, into its own accumulators.
+        let chunk = m.div_ceil(spring_chunks(m)).max(1);
+        let parts = m.div_ceil(chunk);
+        self.diagonals.resize(parts * n, SymBlock::default());
+        self.rhs.resize(parts * n, Vec3::zeros());
+        let springs = system.springs();
+        let work = |blocks: &mut [SymBlock],
+                    frozen: &mut [Vec3],
+                    part: &[hooke_core::Spring],
+                    diagonal: &mut [SymBlock],
+                    rhs: &mut [Vec3]| {
+            diagonal.fill(SymBlock::default());
+            rhs.fill(Vec3::zeros());
+            for ((s, block), frozen) in part.iter().zip(blocks).zip(frozen) {
                 let h = s.linearize(x[s.i], x[s.j], lin.compressed);
                 // β²h² H = β²h² [(k_∥ − k_⊥) d dᵀ + k_⊥ I]
                 *block = SymBlock::rank_one_plus_identity(
@@ -151,21 +165,49 @@ impl Assembler {
                     shared -= s.damping * d.dot(&(v[s.i] - v[s.j])) * d;
                     block.add_assign(&SymBlock::rank_one_plus_identity(bh * s.damping, d, 0.0));
                 }
-                *share = bh * shared;
-            },
-        );
+                diagonal[s.i].add_assign(block);
+                diagonal[s.j].add_assign(block);
+                rhs[s.i] += bh * shared;
+                rhs[s.j] -= bh * shared;
+            }
+        };
+        if cfg!(feature = "parallel") && parts > 1 {
+            #[cfg(feature = "parallel")]
+            {
+                use rayon::prelude::*;
+                a.springs
+                    .par_chunks_mut(chunk)
+                    .zip(self.directions.par_chunks_mut(chunk))
+                    .zip(springs.par_chunks(chunk))
+                    .zip(
+                        self.diagonals
+                            .par_chunks_mut(n)
+                            .zip(self.rhs.par_chunks_mut(n)),
+                    )
+                    .for_each(|(((blocks, frozen), part), (diagonal, rhs))| {
+                        work(blocks, frozen, part, diagonal, rhs);
+                    });
+            }
+        } else {
+            let chunks = a
+                .springs
+                .chunks_mut(chunk)
+                .zip(self.directions.chunks_mut(chunk))
+                .zip(springs.chunks(chunk))
+                .zip(self.diagonals.chunks_mut(n).zip(self.rhs.chunks_mut(n)));
+            for (((blocks, frozen), part), (diagonal, rhs)) in chunks {
+                work(blocks, frozen, part, diagonal, rhs);
+            }
+        }
 
+        // Pass two, per particle: the mass and air-damping terms plus the
+        // accumulated springs.
         let (masses, gravity, gamma) = (system.masses(), system.gravity(), system.air_damping());
-        let BlockMatrix {
-            pattern,
-            diagonal,
-            springs: spring_blocks,
-        } = a;
-        let shares = &*shares;
+        let (diagonals, accumulated) = (&self.diagonals, &self.rhs);
         let non_finite = AtomicUsize::new(usize::MAX);
         let not_definite = AtomicUsize::new(usize::MAX);
         for_each_row3(
-            diagonal,
+            &mut a.diagonal,
             &mut jacobi.inverses,
             b,
             |i, diagonal, inverse, bi| {
@@ -178,9 +220,9 @@ impl Assembler {
                 if let Some(gamma) = gamma {
                     rhs -= bh * gamma * v[i];
                 }
-                for e in pattern.row(i) {
-                    block.add_assign(&spring_blocks[e.spring()]);
-                    rhs += e.sign() * shares[e.spring()];
+                for p in 0..parts {
+                    block.add_assign(&diagonals[p * n + i]);
+                    rhs += accumulated[p * n + i];
                 }
                 *diagonal = block;
                 *bi = rhs;

@@ -79,6 +79,23 @@ pub(crate) fn for_each_row3<A: Send, B: Send, C: Send>(
     }
 }
 
+/// Into how many chunks to split `springs` springs for a parallel pass: one
+/// per thread for large systems, else one.
+#[cfg(feature = "parallel")]
+pub(crate) fn spring_chunks(springs: usize) -> usize {
+    if springs >= PARALLEL_MIN_PARTICLES {
+        rayon::current_num_threads().max(1)
+    } else {
+        1
+    }
+}
+
+/// One chunk: the `parallel` feature is off.
+#[cfg(not(feature = "parallel"))]
+pub(crate) fn spring_chunks(_springs: usize) -> usize {
+    1
+}
+
 /// `Σᵢ f(i)`, in parallel when `n` is large.
 #[inline]
 pub(crate) fn sum(n: usize, f: impl Fn(usize) -> f64 + Sync + Send) -> f64 {
