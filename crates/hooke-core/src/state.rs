@@ -143,7 +143,7 @@ impl State {
 /// which system, which state, at which version, with which step size.
 ///
 /// Cached accelerations, staggered velocities or a Nordsieck vector are only
-/// valid for the exact state the integrator left; [`History::resume`] says
+/// valid for the exact state the integrator left; [`History::take`] says
 /// whether that is the state it is handed now.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct History {
@@ -159,21 +159,22 @@ struct Mark {
 }
 
 impl History {
-    /// The step size of the previous step if `state` is exactly the state the
-    /// previous step on `system` produced; `None` if the integrator must start
-    /// afresh.
-    #[must_use]
-    pub fn resume(&self, system: &System, state: &State) -> Option<f64> {
-        let last = self.last?;
+    /// At the start of a step: the previous step's size if `state` is exactly
+    /// the state the previous step on `system` produced, `None` if the
+    /// integrator must start afresh. Either way the history is forgotten
+    /// until the step [records](History::record) its result, so a step that
+    /// fails leaves none behind.
+    pub fn take(&mut self, system: &System, state: &State) -> Option<f64> {
+        let last = self.last.take()?;
         (last.system == system.id() && last.state == state.id && last.version == state.version)
             .then(|| f64::from_bits(last.dt_bits))
     }
 
-    /// Whether `state` is exactly the state the previous step on `system`
-    /// produced, and that step had size `dt` too.
-    #[must_use]
-    pub fn continues(&self, system: &System, state: &State, dt: f64) -> bool {
-        self.resume(system, state)
+    /// Like [`History::take`], for integrators whose history only holds for
+    /// the same step size: whether the previous step produced `state` on
+    /// `system` with size `dt` too.
+    pub fn take_same_step(&mut self, system: &System, state: &State, dt: f64) -> bool {
+        self.take(system, state)
             .is_some_and(|last| last.to_bits() == dt.to_bits())
     }
 
@@ -185,10 +186,5 @@ impl History {
             version: state.version,
             dt_bits: dt.to_bits(),
         });
-    }
-
-    /// Forgets the previous step, so the next one starts afresh.
-    pub fn clear(&mut self) {
-        self.last = None;
     }
 }

@@ -56,8 +56,7 @@ impl Integrator for Beeman {
         dt: f64,
     ) -> Result<StepReport, StepError> {
         check_step(system, state, dt)?;
-        let continues = self.history.continues(system, state, dt);
-        self.history.clear();
+        let continues = self.history.take_same_step(system, state, dt);
         fit(
             state.len(),
             [

@@ -272,8 +272,7 @@ impl Integrator for DormandPrince {
         dt: f64,
     ) -> Result<StepReport, StepError> {
         check_step(system, state, dt)?;
-        let continues = self.history.resume(system, state).is_some();
-        self.history.clear();
+        let continues = self.history.take(system, state).is_some();
         let n = state.len();
         fit(n, [&mut self.stage_x, &mut self.x, &mut self.v]);
         for buffer in self.stage_v.iter_mut().chain(&mut self.stage_a) {

@@ -125,8 +125,7 @@ impl Integrator for Gear {
         dt: f64,
     ) -> Result<StepReport, StepError> {
         check_step(system, state, dt)?;
-        let previous = self.history.resume(system, state);
-        self.history.clear();
+        let previous = self.history.take(system, state);
         fit(
             state.len(),
             [

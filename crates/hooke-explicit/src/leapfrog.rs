@@ -61,8 +61,7 @@ impl Integrator for Leapfrog {
         dt: f64,
     ) -> Result<StepReport, StepError> {
         check_step(system, state, dt)?;
-        let continues = self.history.continues(system, state, dt);
-        self.history.clear();
+        let continues = self.history.take_same_step(system, state, dt);
         fit(
             state.len(),
             [&mut self.a, &mut self.v_half, &mut self.x, &mut self.v],

@@ -53,8 +53,7 @@ impl Integrator for VelocityVerlet {
         dt: f64,
     ) -> Result<StepReport, StepError> {
         check_step(system, state, dt)?;
-        let continues = self.history.continues(system, state, dt);
-        self.history.clear();
+        let continues = self.history.take_same_step(system, state, dt);
         fit(
             state.len(),
             [&mut self.a, &mut self.a_next, &mut self.x, &mut self.v],

@@ -219,8 +219,7 @@ impl Integrator for Implicit {
         dt: f64,
     ) -> Result<StepReport, StepError> {
         check_step(system, state, dt)?;
-        let continues = self.history.continues(system, state, dt);
-        self.history.clear();
+        let continues = self.history.take_same_step(system, state, dt);
         let n = state.len();
         let w = &mut self.work;
         for buffer in [
