@@ -34,26 +34,13 @@ pub trait Preconditioner {
 }
 
 /// Block-Jacobi preconditioner: `P = blockdiag(A)`, applied with the inverses
-/// of the 3x3 diagonal blocks.
+/// of the 3x3 diagonal blocks, which [`Assembler::assemble`] fills as it
+/// assembles `A`.
+///
+/// [`Assembler::assemble`]: crate::Assembler::assemble
 #[derive(Debug, Clone, Default)]
 pub struct BlockJacobi {
     pub(crate) inverses: Vec<SymBlock>,
-}
-
-impl BlockJacobi {
-    /// The preconditioner of `a` (the assembler fills one as it assembles).
-    ///
-    /// # Errors
-    /// The first particle whose diagonal block is not positive definite.
-    pub fn new(a: &BlockMatrix) -> Result<Self, usize> {
-        let inverses = a
-            .diagonal
-            .iter()
-            .enumerate()
-            .map(|(i, block)| block.inverse_if_positive_definite().ok_or(i))
-            .collect::<Result<_, _>>()?;
-        Ok(Self { inverses })
-    }
 }
 
 impl Preconditioner for BlockJacobi {

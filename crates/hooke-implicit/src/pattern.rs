@@ -2,9 +2,6 @@
 
 use hooke_core::{StepError, System};
 
-/// Bit of [`Entry::spring`] marking the row as the spring's second end `j`.
-const SECOND_END: u32 = 1 << 31;
-
 /// One off-diagonal block of a block row: the column (particle) and the spring
 /// that couples the two.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,19 +22,7 @@ impl Entry {
     #[inline]
     #[must_use]
     pub fn spring(self) -> usize {
-        (self.spring & !SECOND_END) as usize
-    }
-
-    /// `+1` if the row's particle is the spring's first end `i`, `−1` if it is
-    /// `j`: the sign of the spring's force on the row's particle.
-    #[inline]
-    #[must_use]
-    pub fn sign(self) -> f64 {
-        if self.spring & SECOND_END == 0 {
-            1.0
-        } else {
-            -1.0
-        }
+        self.spring as usize
     }
 }
 
@@ -59,12 +44,12 @@ impl Pattern {
     /// The pattern of `system`'s springs.
     ///
     /// # Errors
-    /// [`StepError::SystemTooLarge`] if the particles do not fit 32-bit
-    /// indices or the springs 31-bit ones.
+    /// [`StepError::SystemTooLarge`] if the particles or the entries (two per
+    /// spring) do not fit 32-bit indices.
     pub fn new(system: &System) -> Result<Self, StepError> {
         let (particles, springs) = (system.particle_count(), system.springs().len());
         let too_large = || StepError::SystemTooLarge { particles, springs };
-        if u32::try_from(particles).is_err() || springs >= SECOND_END as usize {
+        if u32::try_from(particles).is_err() || u32::try_from(2 * springs).is_err() {
             return Err(too_large());
         }
         let mut counts = vec![0u32; particles + 1];
@@ -76,7 +61,6 @@ impl Pattern {
         for p in 0..particles {
             row_start[p + 1] += row_start[p];
         }
-        u32::try_from(2 * springs).map_err(|_| too_large())?;
         let mut next: Vec<usize> = row_start.iter().map(|&r| r as usize).collect();
         let mut entries = vec![
             Entry {
@@ -95,7 +79,7 @@ impl Pattern {
             next[s.i] += 1;
             entries[next[s.j]] = Entry {
                 column: s.i as u32,
-                spring: k | SECOND_END,
+                spring: k,
             };
             next[s.j] += 1;
         }
@@ -151,15 +135,15 @@ mod tests {
         let row0: Vec<_> = pattern
             .row(0)
             .iter()
-            .map(|e| (e.column(), e.spring(), e.sign()))
+            .map(|e| (e.column(), e.spring()))
             .collect();
-        assert_eq!(row0, vec![(2, 0, -1.0), (3, 1, 1.0)]);
+        assert_eq!(row0, vec![(2, 0), (3, 1)]);
         let row2: Vec<_> = pattern
             .row(2)
             .iter()
-            .map(|e| (e.column(), e.spring(), e.sign()))
+            .map(|e| (e.column(), e.spring()))
             .collect();
-        assert_eq!(row2, vec![(0, 0, 1.0), (1, 2, -1.0)]);
+        assert_eq!(row2, vec![(0, 0), (1, 2)]);
         assert!(pattern.row(3).iter().all(|e| e.column() == 0));
     }
 }
