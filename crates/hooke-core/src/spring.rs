@@ -248,13 +248,6 @@ impl Spring {
         }
     }
 
-    /// Unit direction `d = (xᵢ − xⱼ)/l`, or zero when the ends coincide.
-    #[must_use]
-    #[inline]
-    pub fn direction(&self, xi: Vec3, xj: Vec3) -> Vec3 {
-        direction(xi, xj).map_or_else(Vec3::zeros, |(d, _)| d)
-    }
-
     /// Damping block `D = c d dᵀ`, so that `∂fᵢ/∂vᵢ = −D`. Zero when the ends
     /// coincide.
     #[must_use]
