@@ -33,7 +33,7 @@ fn parallel_assembly_and_product_match_sequential_computations() {
     let h = 0.01;
     let u: Vec<Vec3> = v.iter().map(|vi| h * vi).collect();
     let inertia = vec![Vec3::zeros(); n];
-    let mut a = BlockMatrix::zeros(Pattern::new(&system).unwrap(), system.springs().len());
+    let mut a = BlockMatrix::zeros(Pattern::new(&system).unwrap());
     let (mut jacobi, mut b) = (BlockJacobi::default(), vec![Vec3::zeros(); n]);
     let lin = Linearization {
         positions: x,

@@ -31,6 +31,7 @@
 //! start, as Baraff & Witkin's Jacobian leaves out the damping force's
 //! dependence on positions.
 
+use std::ops::Range;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use hooke_core::{CompressedSprings, StepError, System, Vec3};
@@ -38,7 +39,8 @@ use hooke_core::{CompressedSprings, StepError, System, Vec3};
 use crate::block::SymBlock;
 use crate::cg::BlockJacobi;
 use crate::matrix::BlockMatrix;
-use crate::vector::{for_each_row3, spring_chunks, sum};
+use crate::pattern::Pattern;
+use crate::vector::{for_each_row, for_each_row3, spring_chunks, sum};
 
 /// Where and how to linearise.
 #[derive(Debug, Clone, Copy)]
@@ -71,7 +73,7 @@ pub struct Linearization<'a> {
 /// let system = Sheet::new(4).system()?;
 /// let state = system.initial_state();
 /// let n = system.particle_count();
-/// let mut a = BlockMatrix::zeros(Pattern::new(&system)?, system.springs().len());
+/// let mut a = BlockMatrix::zeros(Pattern::new(&system)?);
 /// let (mut jacobi, mut b) = (BlockJacobi::default(), vec![Vec3::zeros(); n]);
 /// let h = 0.01;
 /// let u: Vec<Vec3> = state.velocities().iter().map(|v| h * v).collect();
@@ -95,7 +97,9 @@ pub struct Assembler {
     /// and right-hand side.
     diagonals: Vec<SymBlock>,
     rhs: Vec<Vec3>,
-    /// Per spring: its damping direction, frozen at the step's start.
+    /// Per chunk: the rows its springs reach.
+    touched: Vec<Range<usize>>,
+    /// Per slot: the spring's damping direction, frozen at the step's start.
     directions: Vec<Vec3>,
 }
 
@@ -131,21 +135,32 @@ impl Assembler {
         let (bh, bh2) = (lin.beta_h, lin.beta_h * lin.beta_h);
         let (x, v) = (lin.positions, lin.velocities);
 
-        // Pass one: each chunk of springs writes its blocks and scatters them,
-        // with its right-hand-side shares, into its own accumulators.
+        // Pass one: each chunk of slots writes its springs' blocks and
+        // scatters them, with their right-hand-side shares, into its own
+        // accumulators. The slots are ordered by their lower row, so a chunk
+        // touches only the rows from its first slot's row to its last slot's
+        // row plus the pattern's bandwidth.
         let chunk = m.div_ceil(spring_chunks(m)).max(1);
         let parts = m.div_ceil(chunk);
+        let pattern = &a.pattern;
         self.diagonals.resize(parts * n, SymBlock::default());
         self.rhs.resize(parts * n, Vec3::zeros());
+        self.touched.clear();
+        self.touched.extend((0..parts).map(|p| {
+            let (first, last) = (p * chunk, ((p + 1) * chunk).min(m) - 1);
+            pattern.row_of(first)..(pattern.row_of(last) + pattern.bandwidth() + 1).min(n)
+        }));
         let springs = system.springs();
-        let work = |blocks: &mut [SymBlock],
+        let touched = &self.touched;
+        let work = |p: usize,
+                    blocks: &mut [SymBlock],
                     frozen: &mut [Vec3],
-                    part: &[hooke_core::Spring],
                     diagonal: &mut [SymBlock],
                     rhs: &mut [Vec3]| {
-            diagonal.fill(SymBlock::default());
-            rhs.fill(Vec3::zeros());
-            for ((s, block), frozen) in part.iter().zip(blocks).zip(frozen) {
+            diagonal[touched[p].clone()].fill(SymBlock::default());
+            rhs[touched[p].clone()].fill(Vec3::zeros());
+            for (k, (block, frozen)) in blocks.iter_mut().zip(frozen).enumerate() {
+                let s = &springs[pattern.spring(p * chunk + k)];
                 let h = s.linearize(x[s.i], x[s.j], lin.compressed);
                 // β²h² H = β²h² [(k_∥ − k_⊥) d dᵀ + k_⊥ I]
                 *block = SymBlock::rank_one_plus_identity(
@@ -171,38 +186,38 @@ impl Assembler {
                 rhs[s.j] -= bh * shared;
             }
         };
+        let (blocks, directions) = (&mut a.springs, &mut self.directions);
         if cfg!(feature = "parallel") && parts > 1 {
             #[cfg(feature = "parallel")]
             {
                 use rayon::prelude::*;
-                a.springs
+                blocks
                     .par_chunks_mut(chunk)
-                    .zip(self.directions.par_chunks_mut(chunk))
-                    .zip(springs.par_chunks(chunk))
+                    .zip(directions.par_chunks_mut(chunk))
                     .zip(
                         self.diagonals
                             .par_chunks_mut(n)
                             .zip(self.rhs.par_chunks_mut(n)),
                     )
-                    .for_each(|(((blocks, frozen), part), (diagonal, rhs))| {
-                        work(blocks, frozen, part, diagonal, rhs);
+                    .enumerate()
+                    .for_each(|(p, ((blocks, frozen), (diagonal, rhs)))| {
+                        work(p, blocks, frozen, diagonal, rhs);
                     });
             }
         } else {
-            let chunks = a
-                .springs
+            let chunks = blocks
                 .chunks_mut(chunk)
-                .zip(self.directions.chunks_mut(chunk))
-                .zip(springs.chunks(chunk))
+                .zip(directions.chunks_mut(chunk))
                 .zip(self.diagonals.chunks_mut(n).zip(self.rhs.chunks_mut(n)));
-            for (((blocks, frozen), part), (diagonal, rhs)) in chunks {
-                work(blocks, frozen, part, diagonal, rhs);
+            for (p, ((blocks, frozen), (diagonal, rhs))) in chunks.enumerate() {
+                work(p, blocks, frozen, diagonal, rhs);
             }
         }
 
         // Pass two, per particle: the mass and air-damping terms plus the
         // accumulated springs.
         let (masses, gravity, gamma) = (system.masses(), system.gravity(), system.air_damping());
+        let air = bh * gamma.unwrap_or(0.0);
         let (diagonals, accumulated) = (&self.diagonals, &self.rhs);
         let non_finite = AtomicUsize::new(usize::MAX);
         let not_definite = AtomicUsize::new(usize::MAX);
@@ -212,7 +227,7 @@ impl Assembler {
             b,
             |i, diagonal, inverse, bi| {
                 let m = masses[i];
-                let mut block = SymBlock::scaled_identity(m + bh * gamma.unwrap_or(0.0));
+                let mut block = SymBlock::scaled_identity(m + air);
                 let mut rhs = lin.inertia[i];
                 if let Some(g) = gravity {
                     rhs += bh * m * g;
@@ -220,9 +235,11 @@ impl Assembler {
                 if let Some(gamma) = gamma {
                     rhs -= bh * gamma * v[i];
                 }
-                for p in 0..parts {
-                    block.add_assign(&diagonals[p * n + i]);
-                    rhs += accumulated[p * n + i];
+                for (p, rows) in touched.iter().enumerate() {
+                    if rows.contains(&i) {
+                        block.add_assign(&diagonals[p * n + i]);
+                        rhs += accumulated[p * n + i];
+                    }
                 }
                 *diagonal = block;
                 *bi = rhs;
@@ -241,6 +258,7 @@ impl Assembler {
                 }
             },
         );
+        for_each_row(&mut a.mass, |i, mass| *mass = masses[i] + air);
         match (non_finite.into_inner(), not_definite.into_inner()) {
             (usize::MAX, usize::MAX) => Ok(()),
             (usize::MAX, particle) => Err(StepError::NotPositiveDefinite {
@@ -263,6 +281,7 @@ impl Assembler {
     pub(crate) fn potential(
         &self,
         system: &System,
+        pattern: &Pattern,
         x: &[Vec3],
         v: &[Vec3],
         v_tilde: &[Vec3],
@@ -276,11 +295,11 @@ impl Assembler {
             0.5 * m * (v[i] - v_tilde[i]).norm_squared() - m * g.dot(&x[i])
                 + 0.5 * beta_h * gamma * v[i].norm_squared()
         });
-        let springs = sum(system.springs().len(), |k| {
-            let s = &system.springs()[k];
+        let springs = sum(pattern.slots(), |t| {
+            let s = &system.springs()[pattern.spring(t)];
             let mut e = s.energy(x[s.i], x[s.j]);
             if s.damping > 0.0 {
-                let rate = self.directions[k].dot(&(v[s.i] - v[s.j]));
+                let rate = self.directions[t].dot(&(v[s.i] - v[s.j]));
                 e += 0.5 * beta_h * s.damping * rate * rate;
             }
             e

@@ -7,7 +7,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
-use hooke_core::{Mat3, Spring, StepError, Vec3};
+use hooke_core::{Mat3, StepError, Vec3};
 
 use crate::filter::Filter;
 use crate::matrix::BlockMatrix;
@@ -32,9 +32,9 @@ pub struct SparseCholesky {
     col_ptr: Vec<u32>,
     row_idx: Vec<u32>,
     values: Vec<f64>,
-    /// Per spring, the position of the first entry of each of the three
-    /// columns of its block below the diagonal.
-    spring_columns: Vec<[u32; 3]>,
+    /// Per slot of the pattern, the position of the first entry of each of
+    /// the three columns of its spring's block below the diagonal.
+    slot_columns: Vec<[u32; 3]>,
     symbolic: SymbolicCholesky<u32>,
     factor: Vec<f64>,
     factor_memory: MemBuffer,
@@ -59,40 +59,35 @@ const PARALLEL_MIN_PARTICLES: usize = 4096;
 
 impl SparseCholesky {
     /// The layout and symbolic factorization for matrices with the pattern of
-    /// `a`, built from `springs`.
+    /// `a`.
     ///
     /// # Errors
     /// [`StepError::SystemTooLarge`] if the scalar matrix does not fit 32-bit
     /// indices.
-    pub fn new(a: &BlockMatrix, springs: &[Spring]) -> Result<Self, StepError> {
-        let n = a.rows();
+    pub fn new(a: &BlockMatrix) -> Result<Self, StepError> {
+        let (n, springs) = (a.rows(), a.pattern().slots());
         let dofs = 3 * n;
         let too_large = || StepError::SystemTooLarge {
             particles: n,
-            springs: springs.len(),
+            springs,
         };
-        let nonzeros = 6 * n + 9 * springs.len();
+        let nonzeros = 6 * n + 9 * springs;
         let index = |k: usize| u32::try_from(k).map_err(|_| too_large());
         index(nonzeros)?;
         // Column 3q + c holds rows 3q + c..3q + 2 of the diagonal block, then
         // rows 3p..3p + 2 for every neighbour p > q in increasing order.
         let mut col_ptr = Vec::with_capacity(dofs + 1);
         let mut row_idx = Vec::with_capacity(nonzeros);
-        let mut spring_columns = vec![[0; 3]; springs.len()];
+        let mut slot_columns = vec![[0; 3]; springs];
         col_ptr.push(0);
+        let blocks = a.pattern();
         #[allow(clippy::needless_range_loop)] // `c` is a column within the block
         for q in 0..n {
-            let below: Vec<_> = a
-                .pattern()
-                .row(q)
-                .iter()
-                .filter(|e| e.column() > q)
-                .collect();
             for c in 0..3 {
                 row_idx.extend((c..3).map(|r| (3 * q + r) as u32));
-                for e in &below {
-                    spring_columns[e.spring()][c] = row_idx.len() as u32;
-                    row_idx.extend((0..3).map(|r| (3 * e.column() + r) as u32));
+                for t in blocks.upper(q) {
+                    slot_columns[t][c] = row_idx.len() as u32;
+                    row_idx.extend((0..3).map(|r| (3 * blocks.column(t) + r) as u32));
                 }
                 col_ptr.push(row_idx.len() as u32);
             }
@@ -114,7 +109,7 @@ impl SparseCholesky {
             values: vec![0.0; row_idx.len()],
             col_ptr,
             row_idx,
-            spring_columns,
+            slot_columns,
             symbolic,
             factor_memory,
             solve_memory,
@@ -125,20 +120,17 @@ impl SparseCholesky {
 
     /// Solves `(S A S + I − S) x = S b`, the filtered system, into `x`.
     ///
-    /// `springs` must be the endpoints given to [`SparseCholesky::new`].
-    ///
     /// # Errors
     /// The particle of the first non-positive pivot if the filtered matrix is
     /// not positive definite.
     pub fn solve(
         &mut self,
         a: &BlockMatrix,
-        springs: &[Spring],
         filters: &[Filter],
         b: &[Vec3],
         x: &mut [Vec3],
     ) -> Result<(), usize> {
-        self.fill(a, springs, filters);
+        self.fill(a, filters);
         let dofs = self.rhs.len();
         let pattern =
             SymbolicSparseColMatRef::new_checked(dofs, dofs, &self.col_ptr, None, &self.row_idx);
@@ -179,7 +171,7 @@ impl SparseCholesky {
     }
 
     /// Copies the lower triangle of `S A S + I − S` into `values`.
-    fn fill(&mut self, a: &BlockMatrix, springs: &[Spring], filters: &[Filter]) {
+    fn fill(&mut self, a: &BlockMatrix, filters: &[Filter]) {
         let sandwich = |block: Mat3, left: Filter, right: Filter| match (left, right) {
             (Filter::Free, Filter::Free) => block,
             _ => left.matrix() * block * right.matrix(),
@@ -194,12 +186,15 @@ impl SparseCholesky {
                 }
             }
         }
-        for (s, (spring, columns)) in springs.iter().zip(&self.spring_columns).enumerate() {
-            let (p, q) = (spring.i.max(spring.j), spring.i.min(spring.j));
-            let block = sandwich(-a.spring_block(s), filters[p], filters[q]);
-            for (c, &start) in columns.iter().enumerate() {
-                for r in 0..3 {
-                    self.values[start as usize + r] = block[(r, c)];
+        let pattern = a.pattern();
+        for q in 0..pattern.rows() {
+            for t in pattern.upper(q) {
+                let p = pattern.column(t);
+                let block = sandwich(-a.springs[t].to_mat3(), filters[p], filters[q]);
+                for (c, &start) in self.slot_columns[t].iter().enumerate() {
+                    for r in 0..3 {
+                        self.values[start as usize + r] = block[(r, c)];
+                    }
                 }
             }
         }

@@ -325,16 +325,26 @@ impl Integrator for Implicit {
             }
             // Backtracking (Armijo) on Φ along δ; the slope is ∇Φ·δ = −bᵀδ.
             let slope = -dot(&w.b, &w.delta);
-            let start = self
-                .assembler
-                .potential(system, &w.x, &w.v, &w.v_tilde, beta_h);
+            let start = self.assembler.potential(
+                system,
+                topology.pattern(),
+                &w.x,
+                &w.v,
+                &w.v_tilde,
+                beta_h,
+            );
             let mut alpha = 1.0;
             let accepted = loop {
                 for_each_row(&mut w.trial, |i, t| *t = w.v[i] + alpha * w.delta[i]);
                 for_each_row(&mut w.x, |i, x| *x = w.x_tilde[i] + beta_h * w.trial[i]);
-                let value = self
-                    .assembler
-                    .potential(system, &w.x, &w.trial, &w.v_tilde, beta_h);
+                let value = self.assembler.potential(
+                    system,
+                    topology.pattern(),
+                    &w.x,
+                    &w.trial,
+                    &w.v_tilde,
+                    beta_h,
+                );
                 if value <= start + 1e-4 * alpha * slope {
                     break true;
                 }

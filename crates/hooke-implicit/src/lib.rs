@@ -86,6 +86,6 @@ pub use cholesky::SparseCholesky;
 pub use filter::Filter;
 pub use implicit::{Implicit, Scheme};
 pub use matrix::BlockMatrix;
-pub use pattern::{Entry, Pattern};
+pub use pattern::Pattern;
 pub use solver::LinearSolver;
 pub use vector::PARALLEL_MIN_PARTICLES;

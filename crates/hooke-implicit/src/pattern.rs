@@ -1,94 +1,73 @@
 //! The sparsity pattern of a spring system's matrix, built once per topology.
 
+use std::ops::Range;
+
 use hooke_core::{StepError, System};
 
-/// One off-diagonal block of a block row: the column (particle) and the spring
-/// that couples the two.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Entry {
-    column: u32,
-    spring: u32,
-}
-
-impl Entry {
-    /// The column's particle.
-    #[inline]
-    #[must_use]
-    pub fn column(self) -> usize {
-        self.column as usize
-    }
-
-    /// The spring that couples this row to [`Entry::column`].
-    #[inline]
-    #[must_use]
-    pub fn spring(self) -> usize {
-        self.spring as usize
-    }
-}
-
 /// Which blocks of the `3n × 3n` matrix `A = M + βh C + β²h² K` can be
-/// nonzero: the diagonal block of every particle and, for every spring
-/// `(i, j)`, the blocks `(i, j)` and `(j, i)`.
+/// nonzero, and where each spring's block is stored.
 ///
-/// Block row `i` lists one [`Entry`] per spring at `i`, sorted by column. The
-/// pattern depends on the springs' endpoints only, so it is built once and
-/// every step refills values. A scene without springs has empty rows; no term
-/// it does not declare enters the pattern.
+/// The diagonal block of every particle can be nonzero and, for every spring
+/// `(i, j)`, the blocks `(i, j)` and `(j, i)`. Each spring's block is stored
+/// once, in a *slot*: the slots are ordered by the spring's lower endpoint,
+/// then its higher one, so the springs of block row `r` whose other end lies
+/// beyond `r` — the upper triangle of the row — occupy a contiguous range of
+/// slots ([`Pattern::upper`]). A product then streams through the blocks in
+/// storage order, whatever order the scene declared its springs in.
+///
+/// The pattern depends on the springs' endpoints only, so it is built once
+/// and every step refills values. A scene without springs has empty rows; no
+/// term it does not declare enters the pattern.
 #[derive(Debug, Clone)]
 pub struct Pattern {
+    /// Per row `r`, the slots `row_start[r]..row_start[r + 1]`.
     row_start: Vec<u32>,
-    entries: Vec<Entry>,
+    /// Per slot: the spring's higher endpoint.
+    pub(crate) column: Vec<u32>,
+    /// Per slot: the spring stored there.
+    spring: Vec<u32>,
+    /// Per spring: its slot.
+    slot: Vec<u32>,
+    /// The largest `column − row` over the slots (0 without springs).
+    bandwidth: usize,
 }
 
 impl Pattern {
     /// The pattern of `system`'s springs.
     ///
     /// # Errors
-    /// [`StepError::SystemTooLarge`] if the particles or the entries (two per
-    /// spring) do not fit 32-bit indices.
+    /// [`StepError::SystemTooLarge`] if the particles or the springs do not
+    /// fit 32-bit indices.
     pub fn new(system: &System) -> Result<Self, StepError> {
         let (particles, springs) = (system.particle_count(), system.springs().len());
-        let too_large = || StepError::SystemTooLarge { particles, springs };
-        if u32::try_from(particles).is_err() || u32::try_from(2 * springs).is_err() {
-            return Err(too_large());
+        if u32::try_from(particles).is_err() || u32::try_from(springs).is_err() {
+            return Err(StepError::SystemTooLarge { particles, springs });
         }
-        let mut counts = vec![0u32; particles + 1];
-        for s in system.springs() {
-            counts[s.i + 1] += 1;
-            counts[s.j + 1] += 1;
-        }
-        let mut row_start = counts;
-        for p in 0..particles {
-            row_start[p + 1] += row_start[p];
-        }
-        let mut next: Vec<usize> = row_start.iter().map(|&r| r as usize).collect();
-        let mut entries = vec![
-            Entry {
-                column: 0,
-                spring: 0
-            };
-            2 * springs
-        ];
-        for (k, s) in system.springs().iter().enumerate() {
+        let ends = |s: &hooke_core::Spring| (s.i.min(s.j), s.i.max(s.j));
+        let mut order: Vec<u32> = (0..springs as u32).collect();
+        order.sort_unstable_by_key(|&s| ends(&system.springs()[s as usize]));
+        let mut row_start = vec![0u32; particles + 1];
+        let mut column = Vec::with_capacity(springs);
+        let mut slot = vec![0u32; springs];
+        let mut bandwidth = 0;
+        for (t, &s) in order.iter().enumerate() {
+            let (row, col) = ends(&system.springs()[s as usize]);
+            row_start[row + 1] += 1;
             // Both fit: checked above.
-            let k = k as u32;
-            entries[next[s.i]] = Entry {
-                column: s.j as u32,
-                spring: k,
-            };
-            next[s.i] += 1;
-            entries[next[s.j]] = Entry {
-                column: s.i as u32,
-                spring: k,
-            };
-            next[s.j] += 1;
+            column.push(col as u32);
+            slot[s as usize] = t as u32;
+            bandwidth = bandwidth.max(col - row);
         }
-        let mut pattern = Self { row_start, entries };
-        for row in 0..particles {
-            let range = pattern.range(row);
-            pattern.entries[range].sort_unstable_by_key(|e| e.column);
+        for r in 0..particles {
+            row_start[r + 1] += row_start[r];
         }
-        Ok(pattern)
+        Ok(Self {
+            row_start,
+            column,
+            spring: order,
+            slot,
+            bandwidth,
+        })
     }
 
     /// Number of block rows (particles).
@@ -97,21 +76,54 @@ impl Pattern {
         self.row_start.len() - 1
     }
 
-    /// Number of stored off-diagonal entries (twice the springs).
+    /// Number of slots: one per spring.
     #[must_use]
-    pub fn entry_count(&self) -> usize {
-        self.entries.len()
+    pub fn slots(&self) -> usize {
+        self.column.len()
     }
 
-    /// The off-diagonal entries of block row `row`, sorted by column.
+    /// The slots of the springs whose lower endpoint is `row`, sorted by
+    /// their higher endpoint.
     #[inline]
     #[must_use]
-    pub fn row(&self, row: usize) -> &[Entry] {
-        &self.entries[self.range(row)]
+    pub fn upper(&self, row: usize) -> Range<usize> {
+        self.row_start[row] as usize..self.row_start[row + 1] as usize
     }
 
-    fn range(&self, row: usize) -> std::ops::Range<usize> {
-        self.row_start[row] as usize..self.row_start[row + 1] as usize
+    /// The lower endpoint of the spring in `slot`.
+    #[must_use]
+    pub fn row_of(&self, slot: usize) -> usize {
+        self.row_start
+            .partition_point(|&start| start as usize <= slot)
+            - 1
+    }
+
+    /// The higher endpoint of the spring in `slot`.
+    #[inline]
+    #[must_use]
+    pub fn column(&self, slot: usize) -> usize {
+        self.column[slot] as usize
+    }
+
+    /// The spring stored in `slot`.
+    #[inline]
+    #[must_use]
+    pub fn spring(&self, slot: usize) -> usize {
+        self.spring[slot] as usize
+    }
+
+    /// The slot of `spring`.
+    #[inline]
+    #[must_use]
+    pub fn slot(&self, spring: usize) -> usize {
+        self.slot[spring] as usize
+    }
+
+    /// The largest distance `|i − j|` between the ends of a spring: every
+    /// block lies within this many block rows of the diagonal.
+    #[must_use]
+    pub fn bandwidth(&self) -> usize {
+        self.bandwidth
     }
 }
 
@@ -121,29 +133,34 @@ mod tests {
     use hooke_core::SystemBuilder;
 
     #[test]
-    fn rows_list_each_spring_once_per_end_sorted_by_column() {
+    fn slots_are_ordered_by_lower_then_higher_endpoint() {
         let mut b = SystemBuilder::new();
         for k in 0..4 {
             b.particle(1.0, [k as f64, 0.0, 0.0]);
         }
         b.spring(2, 0, 1.0);
-        b.spring(0, 3, 1.0);
+        b.spring(3, 0, 1.0);
         b.spring(1, 2, 1.0);
+        b.spring(0, 1, 1.0);
         let pattern = Pattern::new(&b.build().unwrap()).unwrap();
         assert_eq!(pattern.rows(), 4);
-        assert_eq!(pattern.entry_count(), 6);
-        let row0: Vec<_> = pattern
-            .row(0)
-            .iter()
-            .map(|e| (e.column(), e.spring()))
-            .collect();
-        assert_eq!(row0, vec![(2, 0), (3, 1)]);
-        let row2: Vec<_> = pattern
-            .row(2)
-            .iter()
-            .map(|e| (e.column(), e.spring()))
-            .collect();
-        assert_eq!(row2, vec![(0, 0), (1, 2)]);
-        assert!(pattern.row(3).iter().all(|e| e.column() == 0));
+        assert_eq!(pattern.slots(), 4);
+        let row = |r: usize| -> Vec<(usize, usize)> {
+            pattern
+                .upper(r)
+                .map(|t| (pattern.column(t), pattern.spring(t)))
+                .collect()
+        };
+        assert_eq!(row(0), vec![(1, 3), (2, 0), (3, 1)]);
+        assert_eq!(row(1), vec![(2, 2)]);
+        assert!(row(2).is_empty() && row(3).is_empty());
+        for s in 0..4 {
+            assert_eq!(pattern.spring(pattern.slot(s)), s);
+        }
+        assert_eq!(pattern.bandwidth(), 3);
+        assert_eq!(
+            (0..4).map(|t| pattern.row_of(t)).collect::<Vec<_>>(),
+            [0, 0, 0, 1]
+        );
     }
 }

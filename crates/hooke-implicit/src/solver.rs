@@ -37,6 +37,13 @@ pub(crate) struct Topology {
     cholesky: Option<SparseCholesky>,
 }
 
+impl Topology {
+    /// The sparsity pattern.
+    pub(crate) fn pattern(&self) -> &Pattern {
+        self.matrix.pattern()
+    }
+}
+
 /// The topology-dependent parts for `system`, rebuilt when the system
 /// changes or none were built yet (the step's history is keyed on the system
 /// too, so it restarts then).
@@ -49,9 +56,9 @@ pub(crate) fn topology<'a>(
         *cached = None;
     }
     if cached.is_none() {
-        let matrix = BlockMatrix::zeros(Pattern::new(system)?, system.springs().len());
+        let matrix = BlockMatrix::zeros(Pattern::new(system)?);
         let cholesky = match solver {
-            LinearSolver::Cholesky => Some(SparseCholesky::new(&matrix, system.springs())?),
+            LinearSolver::Cholesky => Some(SparseCholesky::new(&matrix)?),
             LinearSolver::Pcg(_) => None,
         };
         let filters = (0..system.particle_count())
@@ -143,12 +150,12 @@ impl Solve<'_> {
                 let factor = cholesky
                     .as_mut()
                     .expect("built with the topology for this solver");
-                factor
-                    .solve(matrix, system.springs(), filters, b, x)
-                    .map_err(|particle| StepError::NotPositiveDefinite {
+                factor.solve(matrix, filters, b, x).map_err(|particle| {
+                    StepError::NotPositiveDefinite {
                         time,
                         particle: Some(particle),
-                    })?;
+                    }
+                })?;
             }
         }
         Ok(())

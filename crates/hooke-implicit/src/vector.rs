@@ -11,7 +11,7 @@ pub const PARALLEL_MIN_PARTICLES: usize = 16_384;
 
 /// Rows handed to one rayon task at least.
 #[cfg(feature = "parallel")]
-const MIN_CHUNK: usize = 2048;
+pub(crate) const MIN_CHUNK: usize = 2048;
 
 /// Calls `f(i, &mut out[i])` for every `i`, in parallel when `out` is long.
 #[inline]
