@@ -162,23 +162,27 @@ impl Assembler {
             for (k, (block, frozen)) in blocks.iter_mut().zip(frozen).enumerate() {
                 let s = &springs[pattern.spring(p * chunk + k)];
                 let h = s.linearize(x[s.i], x[s.j], lin.compressed);
-                // β²h² H = β²h² [(k_∥ − k_⊥) d dᵀ + k_⊥ I]
-                *block = SymBlock::rank_one_plus_identity(
-                    bh2 * (h.axial - h.transverse),
-                    h.direction,
-                    bh2 * h.transverse,
-                );
                 let mut shared = h.force;
                 if let Some(u) = lin.displacement {
                     shared -= h.apply(u[s.i] - u[s.j]);
                 }
+                // β²h² H = β²h² [(k_∥ − k_⊥) d dᵀ + k_⊥ I], plus βh c e eᵀ
+                // along the damping direction e, which is d unless frozen.
+                let mut along = bh2 * (h.axial - h.transverse);
+                let mut damping = None;
                 if s.damping > 0.0 {
                     if lin.freeze_directions {
                         *frozen = h.direction;
+                        along += bh * s.damping;
+                    } else {
+                        damping = Some(*frozen);
                     }
-                    let d = *frozen;
-                    shared -= s.damping * d.dot(&(v[s.i] - v[s.j])) * d;
-                    block.add_assign(&SymBlock::rank_one_plus_identity(bh * s.damping, d, 0.0));
+                    let e = *frozen;
+                    shared -= s.damping * e.dot(&(v[s.i] - v[s.j])) * e;
+                }
+                *block = SymBlock::rank_one_plus_identity(along, h.direction, bh2 * h.transverse);
+                if let Some(e) = damping {
+                    block.add_assign(&SymBlock::rank_one_plus_identity(bh * s.damping, e, 0.0));
                 }
                 diagonal[s.i].add_assign(block);
                 diagonal[s.j].add_assign(block);
