@@ -52,8 +52,8 @@ pub mod prelude {
     pub use crate::Error;
     pub use hooke_core::reference::{BeadOnString, HangingChain, Oscillator, Sheet};
     pub use hooke_core::{
-        BuildError, EnergyLog, Integrator, Observer, Simulation, State, StepError, StepReport,
-        StrainLog, System, SystemBuilder, Vec3,
+        BuildError, EnergyLog, Integrator, Observer, Obstacle, Path, Shape, Simulation, State,
+        StepError, StepReport, StrainLog, System, SystemBuilder, Vec3,
     };
     pub use hooke_explicit::{
         Beeman, DormandPrince, ExplicitEuler, Gear, Heun, Leapfrog, Midpoint, PositionVerlet, Rk4,

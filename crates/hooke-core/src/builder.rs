@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use crate::error::{BuildError, Quantity, SpringParameter};
 use crate::system::fresh_system_id;
-use crate::{Spring, System, Vec3};
+use crate::{Obstacle, Spring, System, Vec3};
 
 /// Builds a [`System`]; every value is checked at [`SystemBuilder::build`],
 /// which names the first particle, spring or field that is wrong.
@@ -32,6 +32,7 @@ pub struct SystemBuilder {
     pins: Vec<usize>,
     gravity: Option<Vec3>,
     air_damping: Option<f64>,
+    obstacles: Vec<Obstacle>,
 }
 
 /// A spring being added to a [`SystemBuilder`]; set its rest length and
@@ -168,12 +169,27 @@ impl SystemBuilder {
         self
     }
 
+    /// Adds a kinematic obstacle that particles cannot enter; every
+    /// integrator resolves contacts with it at the end of each step.
+    ///
+    /// ```
+    /// use hooke_core::{Obstacle, Shape, Vec3};
+    /// let mut b = hooke_core::SystemBuilder::new();
+    /// b.obstacle(Obstacle::new(Shape::Plane { point: Vec3::zeros(), normal: Vec3::y() }));
+    /// assert_eq!(b.build()?.obstacles().len(), 1);
+    /// # Ok::<(), hooke_core::BuildError>(())
+    /// ```
+    pub fn obstacle(&mut self, obstacle: Obstacle) -> &mut Self {
+        self.obstacles.push(obstacle);
+        self
+    }
+
     /// Validates everything and builds the system.
     ///
     /// # Errors
     /// The first problem found, in this order: particles (mass, position,
     /// velocity), springs (endpoints, parameters, duplicates), pins, gravity,
-    /// air damping. See [`BuildError`].
+    /// air damping, obstacles. See [`BuildError`].
     pub fn build(&self) -> Result<System, BuildError> {
         self.check_particles()?;
         let springs = self.resolved_springs()?;
@@ -191,6 +207,14 @@ impl SystemBuilder {
         if let Some(value) = self.air_damping.filter(|&y| !(y.is_finite() && y >= 0.0)) {
             return Err(BuildError::InvalidAirDamping { value });
         }
+        if let Some((obstacle, problem)) = self
+            .obstacles
+            .iter()
+            .enumerate()
+            .find_map(|(k, o)| o.problem().map(|p| (k, p)))
+        {
+            return Err(BuildError::InvalidObstacle { obstacle, problem });
+        }
         let inverse_masses = self
             .masses
             .iter()
@@ -207,6 +231,7 @@ impl SystemBuilder {
             springs,
             gravity: self.gravity,
             air_damping: self.air_damping,
+            obstacles: self.obstacles.clone(),
         })
     }
 

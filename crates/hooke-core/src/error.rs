@@ -126,6 +126,14 @@ pub enum BuildError {
         /// The offending coefficient.
         value: f64,
     },
+    /// An obstacle with an invalid shape, path, restitution or friction.
+    #[error("obstacle {obstacle}: {problem}")]
+    InvalidObstacle {
+        /// Index of the obstacle.
+        obstacle: usize,
+        /// What is wrong, naming the field.
+        problem: &'static str,
+    },
 }
 
 /// A step that could not be taken. The state is left as it was before the

@@ -33,6 +33,8 @@ pub struct StepReport {
     /// the nonlinear equations in velocity units (zero where only linearised
     /// steps were taken).
     pub newton_residual: f64,
+    /// Particle–obstacle contacts resolved at the end of the step.
+    pub contacts: usize,
 }
 
 impl StepReport {
@@ -58,6 +60,7 @@ impl AddAssign for StepReport {
         self.unconverged_solves += other.unconverged_solves;
         self.linear_residual = self.linear_residual.max(other.linear_residual);
         self.newton_iterations += other.newton_iterations;
+        self.contacts += other.contacts;
         self.newton_residual = self.newton_residual.max(other.newton_residual);
     }
 }

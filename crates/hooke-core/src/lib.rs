@@ -38,22 +38,26 @@
 //! ```
 
 mod builder;
+mod contact;
 mod energy;
 mod error;
 mod forces;
 mod integrator;
 mod observer;
+mod obstacle;
 pub mod reference;
 mod spring;
 mod state;
 mod system;
 
 pub use builder::{SpringEntry, SystemBuilder};
+pub use contact::respond_to_contact;
 pub use energy::Energy;
 pub use error::{BuildError, ParameterError, Quantity, SpringParameter, StepError};
 pub use forces::{ForceEvaluator, PARALLEL_MIN_SPRINGS, Parallelism};
 pub use integrator::{Integrator, StepReport, check_step};
 pub use observer::{EnergyLog, EnergySample, Observer, Simulation, StrainLog};
+pub use obstacle::{Obstacle, Path, Shape};
 pub use spring::{CompressedSprings, Linearized, Spring};
 pub use state::{History, State};
 pub use system::System;

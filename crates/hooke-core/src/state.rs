@@ -95,6 +95,13 @@ impl State {
         &mut self.velocities
     }
 
+    /// Mutable positions and velocities at once. Integrators with history
+    /// restart on the next step.
+    pub fn positions_and_velocities_mut(&mut self) -> (&mut [Vec3], &mut [Vec3]) {
+        self.version += 1;
+        (&mut self.positions, &mut self.velocities)
+    }
+
     /// Sets the time. Integrators with history restart on the next step.
     pub fn set_time(&mut self, time: f64) {
         self.version += 1;

@@ -3,7 +3,7 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::{Spring, State, StepError, Vec3};
+use crate::{Obstacle, Spring, State, StepError, Vec3};
 
 static NEXT_SYSTEM_ID: AtomicU64 = AtomicU64::new(1);
 
@@ -31,6 +31,7 @@ pub struct System {
     pub(crate) springs: Vec<Spring>,
     pub(crate) gravity: Option<Vec3>,
     pub(crate) air_damping: Option<f64>,
+    pub(crate) obstacles: Vec<Obstacle>,
 }
 
 pub(crate) fn fresh_system_id() -> u64 {

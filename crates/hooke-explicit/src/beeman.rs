@@ -98,7 +98,10 @@ impl Integrator for Beeman {
         std::mem::swap(&mut self.a_prev, &mut self.a);
         std::mem::swap(&mut self.a, &mut self.a_next);
         self.history.record(system, state, dt);
-        Ok(StepReport::fixed_step(evaluations))
+        Ok(StepReport {
+            contacts: system.resolve_contacts(state),
+            ..StepReport::fixed_step(evaluations)
+        })
     }
 
     fn name(&self) -> &'static str {

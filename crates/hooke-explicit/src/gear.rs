@@ -164,7 +164,10 @@ impl Integrator for Gear {
         }
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
         self.history.record(system, state, dt);
-        Ok(StepReport::fixed_step(evaluations))
+        Ok(StepReport {
+            contacts: system.resolve_contacts(state),
+            ..StepReport::fixed_step(evaluations)
+        })
     }
 
     fn name(&self) -> &'static str {

@@ -63,7 +63,10 @@ impl Integrator for Heun {
             &[(0.5 * dt, &self.a), (0.5 * dt, &self.a_predicted)],
         );
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
-        Ok(StepReport::fixed_step(2))
+        Ok(StepReport {
+            contacts: system.resolve_contacts(state),
+            ..StepReport::fixed_step(2)
+        })
     }
 
     fn name(&self) -> &'static str {

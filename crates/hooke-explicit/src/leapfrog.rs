@@ -83,7 +83,10 @@ impl Integrator for Leapfrog {
             *vh += dt * a;
         }
         self.history.record(system, state, dt);
-        Ok(StepReport::fixed_step(evaluations))
+        Ok(StepReport {
+            contacts: system.resolve_contacts(state),
+            ..StepReport::fixed_step(evaluations)
+        })
     }
 
     fn name(&self) -> &'static str {

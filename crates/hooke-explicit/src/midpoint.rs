@@ -64,7 +64,10 @@ impl Integrator for Midpoint {
         combine(&mut self.x, x0, &[(dt, &self.v_half)]);
         combine(&mut self.v, v0, &[(dt, &self.a)]);
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
-        Ok(StepReport::fixed_step(2))
+        Ok(StepReport {
+            contacts: system.resolve_contacts(state),
+            ..StepReport::fixed_step(2)
+        })
     }
 
     fn name(&self) -> &'static str {

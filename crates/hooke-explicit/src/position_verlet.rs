@@ -97,7 +97,10 @@ impl Integrator for PositionVerlet {
         std::mem::swap(&mut self.x_prev, &mut self.x);
         std::mem::swap(&mut self.a, &mut self.a_next);
         self.history.record(system, state, dt);
-        Ok(StepReport::fixed_step(evaluations))
+        Ok(StepReport {
+            contacts: system.resolve_contacts(state),
+            ..StepReport::fixed_step(evaluations)
+        })
     }
 
     fn name(&self) -> &'static str {

@@ -79,7 +79,10 @@ impl Integrator for Rk4 {
         combine(&mut self.x, x0, &[(dt / 6.0, &self.sum_x)]);
         combine(&mut self.v, v0, &[(dt / 6.0, &self.sum_v)]);
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
-        Ok(StepReport::fixed_step(4))
+        Ok(StepReport {
+            contacts: system.resolve_contacts(state),
+            ..StepReport::fixed_step(4)
+        })
     }
 
     fn name(&self) -> &'static str {

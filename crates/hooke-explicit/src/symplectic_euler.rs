@@ -50,7 +50,10 @@ impl Integrator for SymplecticEuler {
         combine(&mut self.v, v0, &[(dt, &self.a)]);
         combine(&mut self.x, x0, &[(dt, &self.v)]);
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
-        Ok(StepReport::fixed_step(1))
+        Ok(StepReport {
+            contacts: system.resolve_contacts(state),
+            ..StepReport::fixed_step(1)
+        })
     }
 
     fn name(&self) -> &'static str {

@@ -76,7 +76,10 @@ impl Integrator for VelocityVerlet {
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
         std::mem::swap(&mut self.a, &mut self.a_next);
         self.history.record(system, state, dt);
-        Ok(StepReport::fixed_step(evaluations))
+        Ok(StepReport {
+            contacts: system.resolve_contacts(state),
+            ..StepReport::fixed_step(evaluations)
+        })
     }
 
     fn name(&self) -> &'static str {

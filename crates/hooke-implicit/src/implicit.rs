@@ -368,6 +368,7 @@ impl Integrator for Implicit {
         std::mem::swap(&mut w.x_prev, &mut w.x);
         std::mem::swap(&mut w.v_prev, &mut w.v);
         self.history.record(system, state, dt);
+        report.contacts = system.resolve_contacts(state);
         Ok(report)
     }
 

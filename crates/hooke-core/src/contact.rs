@@ -1,0 +1,96 @@
+//! Contact response between particles and a system's obstacles, applied by
+//! every integrator at the end of a step.
+
+use crate::{Obstacle, State, System, Vec3};
+
+/// Pushes a particle at `x` with velocity `v` out of `obstacle` at time `t`
+/// and applies restitution and Coulomb friction; returns whether it was in
+/// contact (`φ(x) < 0`).
+///
+/// With `φ` the signed distance, `n` the outward normal and `u` the
+/// obstacle's velocity, the particle moves to the surface, `x ← x − φ n`, and
+/// if it approaches the obstacle (`v_n = (v − u)·n < 0`) its relative
+/// velocity changes by the normal impulse per unit mass `j = (1 + e)|v_n|`:
+///
+/// ```text
+/// v ← u − e v_n n + max(0, 1 − μ j / |v_t|) v_t,    v_t = (v − u) − v_n n,
+/// ```
+///
+/// so a particle sticks when friction can absorb its tangential speed and
+/// otherwise loses `μ j` of it — over a step of a particle resting on an
+/// incline, exactly Coulomb's law: it stays put while `tan θ ≤ μ` and slides
+/// with acceleration `g (sin θ − μ cos θ)` otherwise.
+///
+/// ```
+/// use hooke_core::{Obstacle, Shape, Vec3, respond_to_contact};
+/// let floor = Obstacle::new(Shape::Plane { point: Vec3::zeros(), normal: Vec3::y() });
+/// let (mut x, mut v) = (Vec3::new(0.0, -0.01, 0.0), Vec3::new(1.0, -2.0, 0.0));
+/// assert!(respond_to_contact(&floor, &mut x, &mut v, 0.0));
+/// assert_eq!((x, v), (Vec3::zeros(), Vec3::new(1.0, 0.0, 0.0)));
+/// ```
+pub fn respond_to_contact(obstacle: &Obstacle, x: &mut Vec3, v: &mut Vec3, t: f64) -> bool {
+    let (phi, n) = obstacle.distance(*x, t);
+    if phi >= 0.0 {
+        return false;
+    }
+    *x -= phi * n;
+    let u = obstacle.velocity(t);
+    let relative = *v - u;
+    let normal = relative.dot(&n);
+    if normal < 0.0 {
+        let tangential = relative - normal * n;
+        let impulse = -(1.0 + obstacle.restitution) * normal;
+        let speed = tangential.norm();
+        let kept = if speed > 0.0 {
+            (1.0 - obstacle.friction * impulse / speed).max(0.0)
+        } else {
+            0.0
+        };
+        *v = u - obstacle.restitution * normal * n + kept * tangential;
+    }
+    true
+}
+
+impl System {
+    /// The obstacles particles cannot enter.
+    #[must_use]
+    pub fn obstacles(&self) -> &[Obstacle] {
+        &self.obstacles
+    }
+
+    /// Resolves the contacts of the state's free particles with the
+    /// obstacles at the state's time, one obstacle after another with
+    /// [`respond_to_contact`]; returns the number of contacts.
+    ///
+    /// A state with contacts counts as edited (integrators with history
+    /// restart, as their history assumes smooth motion); a system without
+    /// obstacles does nothing here.
+    pub fn resolve_contacts(&self, state: &mut State) -> usize {
+        if self.obstacles.is_empty() {
+            return 0;
+        }
+        let t = state.time();
+        let touching = |i: usize, x: &Vec3| {
+            !self.pinned[i] && self.obstacles.iter().any(|o| o.distance(*x, t).0 < 0.0)
+        };
+        if !state
+            .positions()
+            .iter()
+            .enumerate()
+            .any(|(i, x)| touching(i, x))
+        {
+            return 0;
+        }
+        let (positions, velocities) = state.positions_and_velocities_mut();
+        let mut contacts = 0;
+        for (i, (x, v)) in positions.iter_mut().zip(velocities.iter_mut()).enumerate() {
+            if self.pinned[i] {
+                continue;
+            }
+            for obstacle in &self.obstacles {
+                contacts += usize::from(respond_to_contact(obstacle, x, v, t));
+            }
+        }
+        contacts
+    }
+}
