@@ -62,10 +62,9 @@ fn read(bytes: &[u8], path: &Path) -> Result<TetMesh, SceneError> {
         path: PathBuf::from(path),
         message,
     };
-    let file =
-        panic::catch_unwind(|| mshio::parse_msh_bytes(bytes).map_err(|e| describe(&e, bytes)))
-            .map_err(|_| error("the MSH reader failed on malformed input".into()))?
-            .map_err(error)?;
+    let file = panic::catch_unwind(|| mshio::parse_msh_bytes(bytes).map_err(|e| describe(&e)))
+        .map_err(|_| error("the MSH reader failed on malformed input".into()))?
+        .map_err(error)?;
     let mut positions = Vec::new();
     let mut index_of: HashMap<u64, usize> = HashMap::new();
     if let Some(nodes) = &file.data.nodes {
@@ -122,18 +121,20 @@ fn read(bytes: &[u8], path: &Path) -> Result<TetMesh, SceneError> {
     Ok(mesh)
 }
 
-/// The reader's error as its contexts, outermost first, and the line it
-/// stopped at.
-fn describe(error: &mshio::MshParserError<&[u8]>, bytes: &[u8]) -> String {
-    let backtrace = error.filtered_backtrace();
-    let line = backtrace.first().map_or(1, |(rest, _)| {
-        let offset = bytes.len().saturating_sub(rest.len());
-        bytes[..offset].iter().filter(|&&b| b == b'\n').count() + 1
-    });
-    let contexts: Vec<String> = backtrace
-        .iter()
-        .rev()
+/// The reader's error as its contexts, outermost first. (`mshio` does not
+/// say reliably where in the file it stopped, so no line is given.)
+fn describe(error: &mshio::MshParserError<&[u8]>) -> String {
+    let mut kinds: Vec<String> = error
+        .filter_msh_errors()
         .map(|(_, kind)| kind.to_string())
         .collect();
-    format!("line {line}: {}", contexts.join(": "))
+    if kinds.is_empty() {
+        kinds = error
+            .backtrace
+            .iter()
+            .map(|(_, kind)| kind.to_string())
+            .collect();
+    }
+    kinds.reverse();
+    format!("malformed MSH 4.1 data: {}", kinds.join(": "))
 }

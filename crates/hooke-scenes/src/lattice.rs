@@ -332,3 +332,27 @@ fn cell_tets(split: TetSplit, odd: bool) -> Vec<[usize; 4]> {
         ],
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_split_fills_the_unit_cube_exactly() {
+        let corner = |c: usize| Vec3::new((c & 1) as f64, (c >> 1 & 1) as f64, (c >> 2) as f64);
+        for (split, odd, count) in [
+            (TetSplit::Five, false, 5),
+            (TetSplit::Five, true, 5),
+            (TetSplit::Six, false, 6),
+        ] {
+            let tets = cell_tets(split, odd);
+            assert_eq!(tets.len(), count);
+            let volumes: Vec<f64> = tets
+                .iter()
+                .map(|t| signed_volume(t.map(corner)).abs())
+                .collect();
+            assert!(volumes.iter().all(|&v| v > 0.1), "{split:?} {volumes:?}");
+            assert!((volumes.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+        }
+    }
+}
