@@ -120,7 +120,7 @@ impl Body {
         &self.positions
     }
 
-    /// All springs, family by family in the order the builder made them.
+    /// All springs, in the order the builder made them.
     #[must_use]
     pub fn springs(&self) -> &[BodySpring] {
         &self.springs

@@ -2,56 +2,13 @@
 //! bending springs.
 
 use hooke_core::Vec3;
-use nalgebra::{Rotation3, Unit};
+use nalgebra::Rotation3;
 
 use crate::body::Body;
-use crate::error::{SceneError, count, finite, finite_vector, positive};
+use crate::error::{SceneError, count, finite_vector, positive};
+use crate::grid::{Corner, Edge, Pin, Plane, rotation};
 use crate::material::{Mass, Springs};
 use crate::spring::{Family, SpringSet, validate_families};
-
-/// A corner of the grid: top is row 0, left is column 0.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Corner {
-    /// Row 0, column 0.
-    TopLeft,
-    /// Row 0, last column.
-    TopRight,
-    /// Last row, column 0.
-    BottomLeft,
-    /// Last row, last column.
-    BottomRight,
-}
-
-/// A side of the grid: top is row 0, left is column 0.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Edge {
-    /// Row 0.
-    Top,
-    /// The last row.
-    Bottom,
-    /// Column 0.
-    Left,
-    /// The last column.
-    Right,
-}
-
-/// The plane the cloth lies in before any rotation; columns run along +x.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Plane {
-    /// The x–z plane at y = 0, rows running along +z (a table cloth).
-    #[default]
-    Horizontal,
-    /// The x–y plane at z = 0, rows running down −y from row 0 at y = 0
-    /// (a curtain).
-    Vertical,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Pin {
-    Corner(Corner),
-    Edge(Edge),
-    Particle(usize),
-}
 
 /// A rectangular cloth of `columns × rows` particles, particle
 /// `row · columns + column`, built into a [`Body`].
@@ -321,33 +278,9 @@ impl Cloth {
         let pins = self
             .pins
             .iter()
-            .flat_map(|&pin| -> Vec<usize> {
-                match pin {
-                    Pin::Particle(p) => vec![p],
-                    Pin::Corner(Corner::TopLeft) => vec![index(0, 0)],
-                    Pin::Corner(Corner::TopRight) => vec![index(0, nx - 1)],
-                    Pin::Corner(Corner::BottomLeft) => vec![index(ny - 1, 0)],
-                    Pin::Corner(Corner::BottomRight) => vec![index(ny - 1, nx - 1)],
-                    Pin::Edge(Edge::Top) => (0..nx).map(|c| index(0, c)).collect(),
-                    Pin::Edge(Edge::Bottom) => (0..nx).map(|c| index(ny - 1, c)).collect(),
-                    Pin::Edge(Edge::Left) => (0..ny).map(|r| index(r, 0)).collect(),
-                    Pin::Edge(Edge::Right) => (0..ny).map(|r| index(r, nx - 1)).collect(),
-                }
-            })
+            .flat_map(|pin| pin.particles(nx, ny))
             .collect();
         let springs = springs.into_springs();
         Body::from_parts(masses, positions, springs, pins, triangles, Vec::new())
     }
-}
-
-/// The rotation by `angle` about `axis`, both checked.
-fn rotation(axis: [f64; 3], angle: f64) -> Result<Rotation3<f64>, SceneError> {
-    let axis = finite_vector("rotation axis", axis)?;
-    let angle = finite("rotation angle", angle)?;
-    let axis = Unit::try_new(axis, f64::MIN_POSITIVE).ok_or(SceneError::InvalidVector {
-        field: "rotation axis",
-        value: axis.into(),
-        requirement: "non-zero",
-    })?;
-    Ok(Rotation3::from_axis_angle(&axis, angle))
 }

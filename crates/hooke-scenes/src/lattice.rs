@@ -6,20 +6,9 @@ use hooke_core::Vec3;
 use crate::body::Body;
 use crate::error::{SceneError, count, finite_vector, positive};
 use crate::material::{Mass, Springs};
-use crate::mesh::{TetMesh, lump, signed_volume};
+use crate::mesh::{TET_EDGES, TetMesh, lump, signed_volume};
 use crate::spring::{Family, SpringSet, validate_families};
-
-/// How each cube of a tetrahedral [`Lattice`] is split.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum TetSplit {
-    /// Five tets: four corner tets of volume 1/6 around a central one of
-    /// volume 1/3; the split alternates with the parity of `i + j + k` so
-    /// that neighbouring cubes share face diagonals. No body diagonals.
-    Five,
-    /// Six tets of volume 1/6 around the body diagonal from corner
-    /// `(0, 0, 0)` to `(1, 1, 1)` (the Kuhn split); every cube alike.
-    Six,
-}
+use crate::tet_split::{TetSplit, cell_tets};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Connectivity {
@@ -245,40 +234,27 @@ impl Lattice {
             }
         }
         let (volumes, _) = mesh.checked_volumes()?;
+        let pairs: Vec<(usize, usize)> = match self.connectivity {
+            Connectivity::Cubes => cubes
+                .iter()
+                .flat_map(|&cube| {
+                    (0..8)
+                        .flat_map(move |c| (c + 1..8).map(move |d| (c, d)))
+                        .map(move |(c, d)| (corner(cube, c), corner(cube, d)))
+                })
+                .collect(),
+            Connectivity::Tets(_) => mesh
+                .tets
+                .iter()
+                .flat_map(|t| TET_EDGES.map(|(c, d)| (t[c], t[d])))
+                .collect(),
+        };
         let mut springs = SpringSet::new(&positions);
-        for (family, params) in families {
-            let span = match family {
-                Family::Edge => 1,
-                Family::FaceDiagonal => 2,
-                _ => 3,
-            };
-            let mut add = |a: usize, b: usize| -> Result<(), SceneError> {
-                let offsets = (0..3).filter(|&d| grid[a][d] != grid[b][d]).count();
-                if offsets == span {
-                    springs.add(a, b, family, params)?;
-                }
-                Ok(())
-            };
-            match self.connectivity {
-                Connectivity::Cubes => {
-                    for &cube in &cubes {
-                        for c in 0..8 {
-                            for d in c + 1..8 {
-                                add(corner(cube, c), corner(cube, d))?;
-                            }
-                        }
-                    }
-                }
-                Connectivity::Tets(_) => {
-                    for t in &mesh.tets {
-                        for c in 0..4 {
-                            for d in c + 1..4 {
-                                add(t[c], t[d])?;
-                            }
-                        }
-                    }
-                }
-            }
+        for (a, b) in pairs {
+            // A pair within one cell spans 1, 2 or 3 axes: edge, face or body diagonal.
+            let span = (0..3).filter(|&d| grid[a][d] != grid[b][d]).count();
+            let (family, params) = families[span - 1];
+            springs.add(a, b, family, params)?;
         }
         let masses = match self.connectivity {
             Connectivity::Tets(_) => lump(positions.len(), &mesh.tets, &volumes, total),
@@ -298,61 +274,5 @@ impl Lattice {
         let triangles = mesh.boundary_faces(1.0);
         let springs = springs.into_springs();
         Body::from_parts(masses, positions, springs, self.pins, triangles, Vec::new())
-    }
-}
-
-/// The tets of one cube as corner numbers `c = x + 2y + 4z`.
-fn cell_tets(split: TetSplit, odd: bool) -> Vec<[usize; 4]> {
-    match (split, odd) {
-        // Paths 0 → (0,0,0) + e_a → + e_b → (1,1,1) over the axis orders.
-        (TetSplit::Six, _) => [
-            [1, 2, 4],
-            [1, 4, 2],
-            [2, 1, 4],
-            [2, 4, 1],
-            [4, 1, 2],
-            [4, 2, 1],
-        ]
-        .iter()
-        .map(|[a, b, c]| [0, *a, a + b, a + b + c])
-        .collect(),
-        (TetSplit::Five, false) => vec![
-            [0, 3, 5, 6],
-            [1, 0, 3, 5],
-            [2, 0, 3, 6],
-            [4, 0, 5, 6],
-            [7, 3, 5, 6],
-        ],
-        (TetSplit::Five, true) => vec![
-            [1, 2, 4, 7],
-            [0, 1, 2, 4],
-            [3, 1, 2, 7],
-            [5, 1, 4, 7],
-            [6, 2, 4, 7],
-        ],
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_split_fills_the_unit_cube_exactly() {
-        let corner = |c: usize| Vec3::new((c & 1) as f64, (c >> 1 & 1) as f64, (c >> 2) as f64);
-        for (split, odd, count) in [
-            (TetSplit::Five, false, 5),
-            (TetSplit::Five, true, 5),
-            (TetSplit::Six, false, 6),
-        ] {
-            let tets = cell_tets(split, odd);
-            assert_eq!(tets.len(), count);
-            let volumes: Vec<f64> = tets
-                .iter()
-                .map(|t| signed_volume(t.map(corner)).abs())
-                .collect();
-            assert!(volumes.iter().all(|&v| v > 0.1), "{split:?} {volumes:?}");
-            assert!((volumes.iter().sum::<f64>() - 1.0).abs() < 1e-12);
-        }
     }
 }

@@ -194,6 +194,9 @@ impl TetMesh {
     }
 }
 
+/// The six edges of a tet as pairs of corner numbers.
+pub(crate) const TET_EDGES: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+
 /// `det(b − a, c − a, d − a) / 6`.
 pub(crate) fn signed_volume([a, b, c, d]: [Vec3; 4]) -> f64 {
     (b - a).cross(&(c - a)).dot(&(d - a)) / 6.0

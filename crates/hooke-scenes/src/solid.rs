@@ -3,7 +3,7 @@
 use crate::body::Body;
 use crate::error::SceneError;
 use crate::material::{Mass, Springs};
-use crate::mesh::{TetMesh, lump};
+use crate::mesh::{TET_EDGES, TetMesh, lump};
 use crate::spring::{Family, SpringSet, validate_families};
 
 /// A tetrahedral mesh made into a body: one particle per vertex,
@@ -97,7 +97,7 @@ impl Solid {
         validate_families(&[(Family::Edge, self.edges)])?;
         let mut springs = SpringSet::new(&mesh.vertices);
         for t in &mesh.tets {
-            for (c, d) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+            for (c, d) in TET_EDGES {
                 springs.add(t[c], t[d], Family::Edge, self.edges)?;
             }
         }
