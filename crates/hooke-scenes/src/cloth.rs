@@ -5,7 +5,7 @@ use hooke_core::Vec3;
 use nalgebra::Rotation3;
 
 use crate::body::Body;
-use crate::error::{SceneError, count, finite_vector, positive};
+use crate::error::{SceneError, count, finite_vector, grid_points, positive};
 use crate::grid::{Corner, Edge, Pin, Plane, rotation};
 use crate::material::{Mass, Springs};
 use crate::spring::{Family, SpringSet, validate_families};
@@ -218,6 +218,7 @@ impl Cloth {
             count("cloth columns", self.columns, 2)?,
             count("cloth rows", self.rows, 2)?,
         );
+        let particles = grid_points("cloth grid", &[nx, ny], 0)?;
         let dx = positive("cloth width", self.width)? / (nx - 1) as f64;
         let dy = positive("cloth height", self.height)? / (ny - 1) as f64;
         let total = self.mass.total(self.width * self.height)?;
@@ -232,8 +233,8 @@ impl Cloth {
         };
         let offset = finite_vector("cloth offset", self.offset)?;
         let index = |row: usize, col: usize| row * nx + col;
-        let mut positions = Vec::with_capacity(nx * ny);
-        let mut masses = Vec::with_capacity(nx * ny);
+        let mut positions = Vec::with_capacity(particles);
+        let mut masses = Vec::with_capacity(particles);
         let cell_mass = total / ((nx - 1) * (ny - 1)) as f64;
         for row in 0..ny {
             for col in 0..nx {

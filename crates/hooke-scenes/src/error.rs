@@ -38,6 +38,12 @@ pub enum SceneError {
         /// The smallest value allowed.
         min: usize,
     },
+    /// Counts whose product of particles overflows the index type.
+    #[error("{field} ask for more particles than can be indexed")]
+    TooLarge {
+        /// The parameters, e.g. `"lattice cells"`.
+        field: &'static str,
+    },
     /// A number that is NaN, infinite, or outside its range.
     #[error("{field} must be {requirement}, got {value}")]
     InvalidValue {
@@ -211,6 +217,18 @@ pub(crate) fn count(field: &'static str, value: usize, min: usize) -> Result<usi
     } else {
         Err(SceneError::InvalidCount { field, value, min })
     }
+}
+
+/// The number of grid points, `Π (cᵢ + extra)`, unless it overflows.
+pub(crate) fn grid_points(
+    field: &'static str,
+    counts: &[usize],
+    extra: usize,
+) -> Result<usize, SceneError> {
+    counts
+        .iter()
+        .try_fold(1usize, |n, &c| n.checked_mul(c.checked_add(extra)?))
+        .ok_or(SceneError::TooLarge { field })
 }
 
 /// `value` if every component is finite.

@@ -73,11 +73,11 @@ fn read(bytes: &[u8], path: &Path) -> Result<TetMesh, SceneError> {
             let mut tags: Vec<(u64, usize)> = match &block.node_tags {
                 Some(map) => map.iter().map(|(&tag, &local)| (tag, local)).collect(),
                 None => (0..block.nodes.len())
-                    .map(|k| (next_tag + k as u64, k))
+                    .map(|k| (next_tag.saturating_add(k as u64), k))
                     .collect(),
             };
             tags.sort_unstable_by_key(|&(_, local)| local);
-            next_tag += block.nodes.len() as u64;
+            next_tag = next_tag.saturating_add(block.nodes.len() as u64);
             for (tag, local) in tags {
                 let n = &block.nodes[local];
                 index_of.insert(tag, positions.len());

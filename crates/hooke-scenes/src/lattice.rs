@@ -4,7 +4,7 @@
 use hooke_core::Vec3;
 
 use crate::body::Body;
-use crate::error::{SceneError, count, finite_vector, positive};
+use crate::error::{SceneError, count, finite_vector, grid_points, positive};
 use crate::material::{Mass, Springs};
 use crate::mesh::{TET_EDGES, TetMesh, lump, signed_volume};
 use crate::spring::{Family, SpringSet, validate_families};
@@ -174,6 +174,7 @@ impl Lattice {
             count("lattice cells along y", self.cells[1], 1)?,
             count("lattice cells along z", self.cells[2], 1)?,
         ];
+        grid_points("lattice cells", &[nx, ny, nz], 1)?;
         let size = [
             positive("lattice size along x", self.size[0])?,
             positive("lattice size along y", self.size[1])?,

@@ -1,7 +1,7 @@
 //! [`Rope`]: a chain of particles between two points.
 
 use crate::body::Body;
-use crate::error::{SceneError, count, finite_vector};
+use crate::error::{SceneError, count, finite_vector, grid_points};
 use crate::material::{Mass, Springs};
 use crate::spring::{Family, SpringSet, validate_families};
 
@@ -122,6 +122,7 @@ impl Rope {
     /// parameter out of range.
     pub fn build(self) -> Result<Body, SceneError> {
         let n = count("rope segments", self.segments, 1)?;
+        grid_points("rope segments", &[n], 1)?;
         let start = finite_vector("rope start", self.start)?;
         let end = finite_vector("rope end", self.end)?;
         let length = (end - start).norm();

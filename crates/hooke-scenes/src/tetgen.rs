@@ -87,11 +87,12 @@ fn read_mesh(
             format!("boundary markers must be 0 or 1, got {markers}"),
         ));
     }
-    let mut vertices = Vec::with_capacity(points);
+    let mut vertices = Vec::new();
     let mut base = 0;
     for k in 0..points {
         let (line, fields) = nodes.next_entry("a point")?;
-        let [index] = nodes.numbers::<1>(line, &fields, 4 + attributes + markers)?;
+        let [index] =
+            nodes.numbers::<1>(line, &fields, 4usize.saturating_add(attributes) + markers)?;
         if k == 0 {
             base = index.min(1);
         }
@@ -127,7 +128,7 @@ fn read_mesh(
             format!("region attribute must be 0 or 1, got {region}"),
         ));
     }
-    let mut tets = Vec::with_capacity(count);
+    let mut tets = Vec::new();
     for _ in 0..count {
         let (line, fields) = eles.next_entry("a tet")?;
         let numbers = eles.numbers::<5>(line, &fields, 1 + corners + region)?;

@@ -2,7 +2,7 @@
 //! offset triangles, and gravity.
 
 use hooke_core::{SystemBuilder, Vec3};
-use hooke_scenes::{Cloth, Corner, Lattice, Rope, SceneError, TetSplit};
+use hooke_scenes::{Cloth, Corner, Lattice, Rope, SceneError, TetSplit, tetgen};
 
 #[test]
 fn bodies_share_a_system_at_their_placements() {
@@ -64,5 +64,23 @@ fn system_applies_gravity_only_when_asked() {
             field: "gravity",
             ..
         })
+    ));
+}
+
+#[test]
+fn counts_too_large_to_index_are_errors_not_panics() {
+    let too_large =
+        |r: Result<hooke_scenes::Body, SceneError>| matches!(r, Err(SceneError::TooLarge { .. }));
+    assert!(too_large(Cloth::grid(usize::MAX, 2).build()));
+    assert!(too_large(
+        Rope::between([0.0; 3], [1.0; 3], usize::MAX).build()
+    ));
+    assert!(too_large(Lattice::cubes(usize::MAX, 1, 1).build()));
+    assert!(too_large(Lattice::cubes(1 << 22, 1 << 22, 1 << 22).build()));
+    // A header promising more points than the file holds.
+    let huge = format!("{} 3 {} 0\n1 0 0 0\n", usize::MAX, usize::MAX);
+    assert!(matches!(
+        tetgen::parse(&huge, "0 4 0\n"),
+        Err(SceneError::Parse { line: 2, .. })
     ));
 }
