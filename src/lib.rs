@@ -32,6 +32,7 @@
 pub use hooke_core as core;
 pub use hooke_explicit as explicit;
 pub use hooke_implicit as implicit;
+pub use hooke_scenes as scenes;
 
 /// Any error hooke returns.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -7,6 +7,7 @@ use hooke_core::{
 
 use crate::assembly::{Assembler, Linearization};
 use crate::cg::PcgWorkspace;
+use crate::contact::Contacts;
 use crate::solver::{LinearSolver, Solve, Topology, topology};
 use crate::vector::{dot, for_each_row, for_each_row2};
 
@@ -80,6 +81,8 @@ pub struct Implicit {
     history: History,
     topology: Option<Topology>,
     assembler: Assembler,
+    contacts: Contacts,
+    contact_margin: f64,
     work: Work,
 }
 
@@ -131,6 +134,8 @@ impl Implicit {
             history: History::default(),
             topology: None,
             assembler: Assembler::default(),
+            contacts: Contacts::default(),
+            contact_margin: 1e-4,
             work: Work::default(),
         }
     }
@@ -202,6 +207,30 @@ impl Implicit {
     pub fn with_compressed_springs(mut self, compressed: CompressedSprings) -> Self {
         self.compressed = compressed;
         self
+    }
+
+    /// Particles within `margin` m of an obstacle that approach or rest on
+    /// it are constrained in the step's solve (default 0.1 mm; see the crate
+    /// docs on contacts).
+    ///
+    /// ```
+    /// let integrator = hooke_implicit::Implicit::backward_euler().with_contact_margin(1e-3)?;
+    /// # Ok::<(), hooke_core::ParameterError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ParameterError`] for a margin that is negative or not finite.
+    pub fn with_contact_margin(mut self, margin: f64) -> Result<Self, ParameterError> {
+        if !(margin.is_finite() && margin >= 0.0) {
+            return Err(ParameterError::new(
+                self.name(),
+                "contact_margin",
+                margin,
+                "finite and non-negative",
+            ));
+        }
+        self.contact_margin = margin;
+        Ok(self)
     }
 
     /// The scheme.
@@ -281,6 +310,18 @@ impl Integrator for Implicit {
             strict,
             time,
         };
+        let contacts = &mut self.contacts;
+        let constrained = !system.obstacles().is_empty()
+            && contacts.begin(
+                system,
+                x0,
+                v0,
+                time,
+                self.contact_margin,
+                topology.filters_mut(),
+            );
+        let prescribed =
+            constrained.then_some((&contacts.prescribed[..], &mut contacts.product[..]));
         solve.linearised(
             &mut self.assembler,
             topology,
@@ -288,9 +329,19 @@ impl Integrator for Implicit {
             &mut w.b,
             &mut w.dv,
             &mut w.pcg,
+            prescribed,
             &mut report,
         )?;
-        for_each_row(&mut w.v, |i, v| *v = v0[i] + w.dv[i]);
+        if constrained {
+            for_each_row(&mut w.v, |i, v| {
+                *v = v0[i] + w.dv[i] + contacts.prescribed[i]
+            });
+            let (matrix, filters) = topology.matrix_and_filters_mut();
+            contacts.release(matrix, &w.dv, &w.b, filters);
+        } else {
+            for_each_row(&mut w.v, |i, v| *v = v0[i] + w.dv[i]);
+        }
+        let mut newton_solved = false;
 
         for _ in 1..self.newton_iterations {
             for_each_row2(&mut w.x, &mut w.inertia, |i, x, inertia| {
@@ -314,8 +365,10 @@ impl Integrator for Implicit {
                 &mut w.b,
                 &mut w.delta,
                 &mut w.pcg,
+                None,
                 &mut report,
             )?;
+            newton_solved = true;
             // The Newton step J⁻¹(−g) measures the residual in velocity units.
             let step = w.delta.iter().map(|d| d.amax()).fold(0.0, f64::max);
             report.newton_residual = step;
@@ -359,6 +412,11 @@ impl Integrator for Implicit {
             std::mem::swap(&mut w.v, &mut w.trial);
         }
         report.newton_iterations = report.linear_solves;
+        if constrained {
+            let last = if newton_solved { &w.delta } else { &w.dv };
+            let contacts = &mut self.contacts;
+            contacts.friction(system, topology.matrix(), last, &w.b, time, &mut w.v);
+        }
 
         for i in 0..n {
             w.x[i] = w.x_tilde[i] + beta_h * w.v[i];

@@ -72,6 +72,7 @@ mod assembly;
 mod block;
 pub mod cg;
 mod cholesky;
+mod contact;
 mod filter;
 mod implicit;
 mod matrix;

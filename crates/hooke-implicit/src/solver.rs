@@ -42,6 +42,21 @@ impl Topology {
     pub(crate) fn pattern(&self) -> &Pattern {
         self.matrix.pattern()
     }
+
+    /// The matrix last assembled.
+    pub(crate) fn matrix(&self) -> &BlockMatrix {
+        &self.matrix
+    }
+
+    /// The per-particle filters (pins are `Fixed` from the start).
+    pub(crate) fn filters_mut(&mut self) -> &mut [Filter] {
+        &mut self.filters
+    }
+
+    /// The matrix last assembled and the filters.
+    pub(crate) fn matrix_and_filters_mut(&mut self) -> (&BlockMatrix, &mut [Filter]) {
+        (&self.matrix, &mut self.filters)
+    }
 }
 
 /// The topology-dependent parts for `system`, rebuilt when the system
@@ -93,7 +108,9 @@ pub(crate) struct Solve<'a> {
 impl Solve<'_> {
     /// Assembles the linearisation `lin` into the topology's matrix and `b`,
     /// then solves into `x` (a warm start on entry), recording both in
-    /// `report`.
+    /// `report`. With `prescribed = Some((z, scratch))` the constrained
+    /// components of the solution are `z` rather than zero: `b` becomes
+    /// `b − A z` and `x` the free part `y` of `Δv = y + z`.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn linearised(
         self,
@@ -103,6 +120,7 @@ impl Solve<'_> {
         b: &mut [Vec3],
         x: &mut [Vec3],
         workspace: &mut PcgWorkspace,
+        prescribed: Option<(&[Vec3], &mut [Vec3])>,
         report: &mut StepReport,
     ) -> Result<(), StepError> {
         let Self {
@@ -119,6 +137,12 @@ impl Solve<'_> {
             ..
         } = topology;
         assembler.assemble(system, lin, matrix, jacobi, b, time)?;
+        if let Some((z, az)) = prescribed {
+            matrix.apply(z, az);
+            for (bi, azi) in b.iter_mut().zip(az.iter()) {
+                *bi -= azi;
+            }
+        }
         report.force_evaluations += 1;
         report.linear_solves += 1;
         match solver {

@@ -1,0 +1,160 @@
+//! Contacts with obstacles as constraints of the implicit step, after
+//! Baraff & Witkin (1998), §5.
+//!
+//! At the start of a step, a free particle within the contact margin of an
+//! obstacle (`φ ≤ margin`) that approaches or rests on it
+//! (`(vᵢ − u)·n ≤ 0`, `u` the obstacle's velocity) is constrained along the
+//! normal `n`: its filter becomes `Sᵢ = I − n nᵀ` and its velocity change
+//! in that direction is prescribed,
+//!
+//! ```text
+//! zᵢ = (u·n − e min((vᵢ − u)·n, 0) − vᵢ·n) n,
+//! ```
+//!
+//! so the new velocity leaves the surface at the obstacle's speed (plus the
+//! rebound `e` of an impact) and the particle slides freely in the tangent
+//! plane. The step solves for `Δv = y + z` with `S y = y` from
+//! `S A y = S (b − A z)`. The constraint's normal impulse is then
+//! `λᵢ = n·(A Δv − b)ᵢ`. Negative, the constraint holds the particle down:
+//! it is released, for the step's remaining Newton iterations and the next
+//! step. Positive, the obstacle pushes, and after the last iteration Coulomb
+//! friction takes up to `μ λᵢ / mᵢ` of the particle's tangential relative
+//! speed. Leftover penetration (a particle that arrived during the step) is
+//! resolved afterwards by `System::resolve_contacts`.
+
+use hooke_core::{System, Vec3};
+
+use crate::filter::Filter;
+use crate::matrix::BlockMatrix;
+
+/// Relative normal speed below which a particle counts as resting, m/s.
+const RESTING: f64 = 1e-9;
+
+/// One constrained particle.
+#[derive(Debug, Clone, Copy)]
+struct Active {
+    obstacle: usize,
+    normal: Vec3,
+}
+
+/// Which particles are constrained by obstacles, across steps.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Contacts {
+    active: Vec<Option<Active>>,
+    /// Particles whose constraint pulled in the last step: free for one step.
+    released: Vec<bool>,
+    /// The prescribed velocity changes `z`.
+    pub(crate) prescribed: Vec<Vec3>,
+    /// Scratch for `A z` before the solve and `A y` after it.
+    pub(crate) product: Vec<Vec3>,
+}
+
+impl Contacts {
+    /// Chooses the constrained particles at the start of a step from `x`,
+    /// `v` at `time`, and sets their filters and prescribed velocity
+    /// changes; returns whether any particle is constrained.
+    pub(crate) fn begin(
+        &mut self,
+        system: &System,
+        x: &[Vec3],
+        v: &[Vec3],
+        time: f64,
+        margin: f64,
+        filters: &mut [Filter],
+    ) -> bool {
+        let n = x.len();
+        self.active.resize(n, None);
+        self.released.resize(n, false);
+        self.prescribed.resize(n, Vec3::zeros());
+        self.product.resize(n, Vec3::zeros());
+        let mut any = false;
+        for i in 0..n {
+            if system.is_pinned(i) {
+                continue;
+            }
+            filters[i] = Filter::Free;
+            self.prescribed[i] = Vec3::zeros();
+            self.active[i] = None;
+            if std::mem::take(&mut self.released[i]) {
+                continue;
+            }
+            let deepest = system
+                .obstacles()
+                .iter()
+                .enumerate()
+                .map(|(k, o)| (k, o.distance(x[i], time)))
+                .filter(|&(k, (phi, normal))| {
+                    let u = system.obstacles()[k].velocity(time);
+                    phi <= margin && (v[i] - u).dot(&normal) <= RESTING
+                })
+                .min_by(|a, b| a.1.0.total_cmp(&b.1.0));
+            if let Some((k, (_, normal))) = deepest {
+                let obstacle = &system.obstacles()[k];
+                let u = obstacle.velocity(time);
+                let approach = (v[i] - u).dot(&normal).min(0.0);
+                let target = u.dot(&normal) - obstacle.restitution * approach;
+                self.prescribed[i] = (target - v[i].dot(&normal)) * normal;
+                filters[i] = Filter::Plane(normal);
+                self.active[i] = Some(Active {
+                    obstacle: k,
+                    normal,
+                });
+                any = true;
+            }
+        }
+        any
+    }
+
+    /// After the first solve of a step, `S A y = S b'` with `b' = b − A z`:
+    /// frees the particles whose constraint pulls them towards the obstacle
+    /// (`λ = n·(A y − b') < 0`) for the rest of this step (further Newton
+    /// iterations let them go) and the next.
+    pub(crate) fn release(
+        &mut self,
+        a: &BlockMatrix,
+        y: &[Vec3],
+        b: &[Vec3],
+        filters: &mut [Filter],
+    ) {
+        a.apply(y, &mut self.product);
+        for (i, active) in self.active.iter_mut().enumerate() {
+            if let Some(Active { normal, .. }) = *active
+                && normal.dot(&(self.product[i] - b[i])) < 0.0
+            {
+                *active = None;
+                filters[i] = Filter::Free;
+                self.released[i] = true;
+            }
+        }
+    }
+
+    /// After the last solve of a step, `S A x = S b`: Coulomb friction on
+    /// the new velocities `v` of the constrained particles, with the normal
+    /// impulses `λ = n·(A x − b)` of that solve.
+    pub(crate) fn friction(
+        &mut self,
+        system: &System,
+        a: &BlockMatrix,
+        x: &[Vec3],
+        b: &[Vec3],
+        time: f64,
+        v: &mut [Vec3],
+    ) {
+        a.apply(x, &mut self.product);
+        let masses = system.masses();
+        for (i, active) in self.active.iter().enumerate() {
+            let Some(Active { obstacle, normal }) = *active else {
+                continue;
+            };
+            let impulse = normal.dot(&(self.product[i] - b[i])).max(0.0);
+            let obstacle = &system.obstacles()[obstacle];
+            let relative = v[i] - obstacle.velocity(time);
+            let tangential = relative - relative.dot(&normal) * normal;
+            let speed = tangential.norm();
+            if speed > 0.0 {
+                let kept = (1.0 - obstacle.friction * impulse / (masses[i] * speed)).max(0.0);
+                v[i] -= (1.0 - kept) * tangential;
+            }
+        }
+    }
+}
