@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use crate::error::{BuildError, Quantity, SpringParameter};
 use crate::system::fresh_system_id;
-use crate::{Obstacle, Spring, System, Vec3};
+use crate::{Obstacle, Path, Spring, System, Vec3};
 
 /// Builds a [`System`]; every value is checked at [`SystemBuilder::build`],
 /// which names the first particle, spring or field that is wrong.
@@ -30,6 +30,7 @@ pub struct SystemBuilder {
     velocities: Vec<Vec3>,
     springs: Vec<SpringEntry>,
     pins: Vec<usize>,
+    pin_paths: Vec<(usize, Path)>,
     gravity: Option<Vec3>,
     air_damping: Option<f64>,
     obstacles: Vec<Obstacle>,
@@ -146,6 +147,25 @@ impl SystemBuilder {
         self
     }
 
+    /// Pins particle `i` and moves it along `path`: at time `t` it is at its
+    /// initial position plus `path.offset(t)` with velocity
+    /// `path.velocity(t)` (a scripted handle).
+    ///
+    /// ```
+    /// use hooke_core::{Path, Vec3};
+    /// let mut b = hooke_core::SystemBuilder::new();
+    /// let handle = b.particle(1.0, [0.0; 3]);
+    /// b.pin_moving(handle, Path::Linear { velocity: Vec3::new(0.0, 0.0, 0.5) });
+    /// let system = b.build()?;
+    /// assert_eq!(system.initial_velocities()[handle], Vec3::new(0.0, 0.0, 0.5));
+    /// # Ok::<(), hooke_core::BuildError>(())
+    /// ```
+    pub fn pin_moving(&mut self, i: usize, path: Path) -> &mut Self {
+        self.pins.push(i);
+        self.pin_paths.push((i, path));
+        self
+    }
+
     /// Uniform gravitational acceleration `g` in m/s²: force `mᵢ g` on every
     /// particle.
     ///
@@ -207,6 +227,20 @@ impl SystemBuilder {
         if let Some(value) = self.air_damping.filter(|&y| !(y.is_finite() && y >= 0.0)) {
             return Err(BuildError::InvalidAirDamping { value });
         }
+        let mut pin_paths = Vec::new();
+        let mut velocities = self.velocities.clone();
+        for (particle, path) in &self.pin_paths {
+            if let Some(problem) = path.problem() {
+                return Err(BuildError::InvalidPinPath {
+                    particle: *particle,
+                    problem,
+                });
+            }
+            pin_paths.retain(|(p, _)| p != particle);
+            pin_paths.push((*particle, path.clone()));
+            velocities[*particle] = path.velocity(0.0);
+        }
+        pin_paths.sort_by_key(|(p, _)| *p);
         if let Some((obstacle, problem)) = self
             .obstacles
             .iter()
@@ -227,7 +261,8 @@ impl SystemBuilder {
             inverse_masses,
             pinned,
             initial_positions: self.positions.clone(),
-            initial_velocities: self.velocities.clone(),
+            initial_velocities: velocities,
+            pin_paths,
             springs,
             gravity: self.gravity,
             air_damping: self.air_damping,

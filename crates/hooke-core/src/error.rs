@@ -126,6 +126,14 @@ pub enum BuildError {
         /// The offending coefficient.
         value: f64,
     },
+    /// A scripted pin whose path is invalid.
+    #[error("pin on particle {particle}: {problem}")]
+    InvalidPinPath {
+        /// The pinned particle.
+        particle: usize,
+        /// What is wrong, naming the field.
+        problem: &'static str,
+    },
     /// An obstacle with an invalid shape, path, restitution or friction.
     #[error("obstacle {obstacle}: {problem}")]
     InvalidObstacle {

@@ -102,6 +102,12 @@ impl State {
         (&mut self.positions, &mut self.velocities)
     }
 
+    /// Positions and velocities for placing pinned particles, which does not
+    /// invalidate the history of integrators.
+    pub(crate) fn pins_mut(&mut self) -> (&mut [Vec3], &mut [Vec3]) {
+        (&mut self.positions, &mut self.velocities)
+    }
+
     /// Sets the time. Integrators with history restart on the next step.
     pub fn set_time(&mut self, time: f64) {
         self.version += 1;

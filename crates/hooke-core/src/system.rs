@@ -3,7 +3,7 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::{Obstacle, Spring, State, StepError, Vec3};
+use crate::{Obstacle, Path, Spring, State, StepError, Vec3};
 
 static NEXT_SYSTEM_ID: AtomicU64 = AtomicU64::new(1);
 
@@ -32,6 +32,8 @@ pub struct System {
     pub(crate) gravity: Option<Vec3>,
     pub(crate) air_damping: Option<f64>,
     pub(crate) obstacles: Vec<Obstacle>,
+    /// Scripted pins, sorted by particle.
+    pub(crate) pin_paths: Vec<(usize, Path)>,
 }
 
 pub(crate) fn fresh_system_id() -> u64 {
@@ -70,6 +72,32 @@ impl System {
     #[must_use]
     pub fn is_pinned(&self, i: usize) -> bool {
         self.pinned.get(i).copied().unwrap_or(false)
+    }
+
+    /// The scripted pins: each pinned particle that moves along a path, in
+    /// increasing order of particle.
+    #[must_use]
+    pub fn pin_paths(&self) -> &[(usize, Path)] {
+        &self.pin_paths
+    }
+
+    /// What every integrator does at the end of a step: moves the scripted
+    /// pins to their paths at the state's time, then resolves contacts with
+    /// the obstacles ([`System::resolve_contacts`]); returns the number of
+    /// contacts. Does nothing for a system with neither.
+    ///
+    /// Placing a scripted pin does not count as editing the state: the other
+    /// particles' history stays valid.
+    pub fn end_step(&self, state: &mut State) -> usize {
+        if !self.pin_paths.is_empty() {
+            let t = state.time();
+            let (positions, velocities) = state.pins_mut();
+            for (i, path) in &self.pin_paths {
+                positions[*i] = self.initial_positions[*i] + path.offset(t);
+                velocities[*i] = path.velocity(t);
+            }
+        }
+        self.resolve_contacts(state)
     }
 
     /// Indices of the pinned particles, in increasing order.

@@ -345,7 +345,7 @@ impl Integrator for DormandPrince {
         self.proposal = Some(h);
         state.commit(&mut self.x, &mut self.v, end)?;
         self.history.record(system, state, dt);
-        report.contacts = system.resolve_contacts(state);
+        report.contacts = system.end_step(state);
         Ok(report)
     }
 

@@ -51,7 +51,7 @@ impl Integrator for ExplicitEuler {
         combine(&mut self.v, v0, &[(dt, &self.a)]);
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
         Ok(StepReport {
-            contacts: system.resolve_contacts(state),
+            contacts: system.end_step(state),
             ..StepReport::fixed_step(1)
         })
     }

@@ -165,7 +165,7 @@ impl Integrator for Gear {
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
         self.history.record(system, state, dt);
         Ok(StepReport {
-            contacts: system.resolve_contacts(state),
+            contacts: system.end_step(state),
             ..StepReport::fixed_step(evaluations)
         })
     }

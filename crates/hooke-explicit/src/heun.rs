@@ -64,7 +64,7 @@ impl Integrator for Heun {
         );
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
         Ok(StepReport {
-            contacts: system.resolve_contacts(state),
+            contacts: system.end_step(state),
             ..StepReport::fixed_step(2)
         })
     }

@@ -84,7 +84,7 @@ impl Integrator for Leapfrog {
         }
         self.history.record(system, state, dt);
         Ok(StepReport {
-            contacts: system.resolve_contacts(state),
+            contacts: system.end_step(state),
             ..StepReport::fixed_step(evaluations)
         })
     }

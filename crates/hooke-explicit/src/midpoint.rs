@@ -65,7 +65,7 @@ impl Integrator for Midpoint {
         combine(&mut self.v, v0, &[(dt, &self.a)]);
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
         Ok(StepReport {
-            contacts: system.resolve_contacts(state),
+            contacts: system.end_step(state),
             ..StepReport::fixed_step(2)
         })
     }

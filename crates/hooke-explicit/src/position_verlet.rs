@@ -98,7 +98,7 @@ impl Integrator for PositionVerlet {
         std::mem::swap(&mut self.a, &mut self.a_next);
         self.history.record(system, state, dt);
         Ok(StepReport {
-            contacts: system.resolve_contacts(state),
+            contacts: system.end_step(state),
             ..StepReport::fixed_step(evaluations)
         })
     }

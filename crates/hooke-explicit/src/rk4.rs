@@ -80,7 +80,7 @@ impl Integrator for Rk4 {
         combine(&mut self.v, v0, &[(dt / 6.0, &self.sum_v)]);
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
         Ok(StepReport {
-            contacts: system.resolve_contacts(state),
+            contacts: system.end_step(state),
             ..StepReport::fixed_step(4)
         })
     }

@@ -51,7 +51,7 @@ impl Integrator for SymplecticEuler {
         combine(&mut self.x, x0, &[(dt, &self.v)]);
         state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
         Ok(StepReport {
-            contacts: system.resolve_contacts(state),
+            contacts: system.end_step(state),
             ..StepReport::fixed_step(1)
         })
     }

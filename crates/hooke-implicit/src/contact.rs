@@ -1,5 +1,9 @@
-//! Contacts with obstacles as constraints of the implicit step, after
-//! Baraff & Witkin (1998), §5.
+//! Contacts with obstacles and scripted pins as constraints of the implicit
+//! step, after Baraff & Witkin (1998), §5.
+//!
+//! A scripted pin is a fixed constraint (`Sᵢ = 0`) whose velocity change is
+//! prescribed, `zᵢ = pᵢ'(t + h) − vᵢ`, so it ends the step at its path's
+//! velocity.
 //!
 //! At the start of a step, a free particle within the contact margin of an
 //! obstacle (`φ ≤ margin`) that approaches or rests on it
@@ -52,13 +56,17 @@ pub(crate) struct Contacts {
 impl Contacts {
     /// Chooses the constrained particles at the start of a step from `x`,
     /// `v` at `time`, and sets their filters and prescribed velocity
-    /// changes; returns whether any particle is constrained.
+    /// changes, and those of the scripted pins, which end the step at their
+    /// path's velocity at `end`; returns whether any velocity change is
+    /// prescribed.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn begin(
         &mut self,
         system: &System,
         x: &[Vec3],
         v: &[Vec3],
         time: f64,
+        end: f64,
         margin: f64,
         filters: &mut [Filter],
     ) -> bool {
@@ -101,6 +109,10 @@ impl Contacts {
                 });
                 any = true;
             }
+        }
+        for (i, path) in system.pin_paths() {
+            self.prescribed[*i] = path.velocity(end) - v[*i];
+            any = true;
         }
         any
     }

@@ -311,12 +311,13 @@ impl Integrator for Implicit {
             time,
         };
         let contacts = &mut self.contacts;
-        let constrained = !system.obstacles().is_empty()
+        let constrained = (!system.obstacles().is_empty() || !system.pin_paths().is_empty())
             && contacts.begin(
                 system,
                 x0,
                 v0,
                 time,
+                time + dt,
                 self.contact_margin,
                 topology.filters_mut(),
             );
@@ -426,7 +427,7 @@ impl Integrator for Implicit {
         std::mem::swap(&mut w.x_prev, &mut w.x);
         std::mem::swap(&mut w.v_prev, &mut w.v);
         self.history.record(system, state, dt);
-        report.contacts = system.resolve_contacts(state);
+        report.contacts = system.end_step(state);
         Ok(report)
     }
 
