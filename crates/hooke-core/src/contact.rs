@@ -4,13 +4,14 @@
 use crate::{Obstacle, State, System, Vec3};
 
 /// Pushes a particle at `x` with velocity `v` out of `obstacle` at time `t`
-/// and applies restitution and Coulomb friction; returns whether it was in
-/// contact (`φ(x) < 0`).
+/// and applies Coulomb friction, and restitution if the contact is `new`;
+/// returns whether it was in contact (`φ(x) < 0`).
 ///
 /// With `φ` the signed distance, `n` the outward normal and `u` the
 /// obstacle's velocity, the particle moves to the surface, `x ← x − φ n`, and
 /// if it approaches the obstacle (`v_n = (v − u)·n < 0`) its relative
-/// velocity changes by the normal impulse per unit mass `j = (1 + e)|v_n|`:
+/// velocity changes by the normal impulse per unit mass `j = (1 + e)|v_n|`
+/// (`e` = 0 unless the contact is new):
 ///
 /// ```text
 /// v ← u − e v_n n + max(0, 1 − μ j / |v_t|) v_t,    v_t = (v − u) − v_n n,
@@ -25,11 +26,18 @@ use crate::{Obstacle, State, System, Vec3};
 /// use hooke_core::{Obstacle, Shape, Vec3, respond_to_contact};
 /// let floor = Obstacle::new(Shape::Plane { point: Vec3::zeros(), normal: Vec3::y() });
 /// let (mut x, mut v) = (Vec3::new(0.0, -0.01, 0.0), Vec3::new(1.0, -2.0, 0.0));
-/// assert!(respond_to_contact(&floor, &mut x, &mut v, 0.0));
+/// assert!(respond_to_contact(&floor, &mut x, &mut v, 0.0, true));
 /// assert_eq!((x, v), (Vec3::zeros(), Vec3::new(1.0, 0.0, 0.0)));
 /// ```
-pub fn respond_to_contact(obstacle: &Obstacle, x: &mut Vec3, v: &mut Vec3, t: f64) -> bool {
+pub fn respond_to_contact(
+    obstacle: &Obstacle,
+    x: &mut Vec3,
+    v: &mut Vec3,
+    t: f64,
+    new: bool,
+) -> bool {
     let (phi, n) = obstacle.distance(*x, t);
+    let restitution = if new { obstacle.restitution } else { 0.0 };
     if phi >= 0.0 {
         return false;
     }
@@ -39,14 +47,14 @@ pub fn respond_to_contact(obstacle: &Obstacle, x: &mut Vec3, v: &mut Vec3, t: f6
     let normal = relative.dot(&n);
     if normal < 0.0 {
         let tangential = relative - normal * n;
-        let impulse = -(1.0 + obstacle.restitution) * normal;
+        let impulse = -(1.0 + restitution) * normal;
         let speed = tangential.norm();
         let kept = if speed > 0.0 {
             (1.0 - obstacle.friction * impulse / speed).max(0.0)
         } else {
             0.0
         };
-        *v = u - obstacle.restitution * normal * n + kept * tangential;
+        *v = u - restitution * normal * n + kept * tangential;
     }
     true
 }
@@ -60,7 +68,9 @@ impl System {
 
     /// Resolves the contacts of the state's free particles with the
     /// obstacles at the state's time, one obstacle after another with
-    /// [`respond_to_contact`]; returns the number of contacts.
+    /// [`respond_to_contact`], and records which particles it touched
+    /// ([`State::touching`]; restitution applies only to new contacts);
+    /// returns the number of contacts.
     ///
     /// A state with contacts counts as edited (integrators with history
     /// restart, as their history assumes smooth motion); a system without
@@ -79,17 +89,23 @@ impl System {
             .enumerate()
             .any(|(i, x)| touching(i, x))
         {
+            state.touching_mut().fill(false);
             return 0;
         }
-        let (positions, velocities) = state.positions_and_velocities_mut();
+        let (positions, velocities, flags) = state.contact_mut();
         let mut contacts = 0;
         for (i, (x, v)) in positions.iter_mut().zip(velocities.iter_mut()).enumerate() {
             if self.pinned[i] {
                 continue;
             }
+            let new = !flags[i];
+            let mut touched = false;
             for obstacle in &self.obstacles {
-                contacts += usize::from(respond_to_contact(obstacle, x, v, t));
+                let hit = respond_to_contact(obstacle, x, v, t, new);
+                touched |= hit;
+                contacts += usize::from(hit);
             }
+            flags[i] = touched;
         }
         contacts
     }

@@ -24,6 +24,8 @@ pub struct State {
     positions: Vec<Vec3>,
     velocities: Vec<Vec3>,
     time: f64,
+    /// Per particle: whether the last step's contact response touched it.
+    touching: Vec<bool>,
     id: u64,
     version: u64,
 }
@@ -36,6 +38,7 @@ impl Clone for State {
             positions: self.positions.clone(),
             velocities: self.velocities.clone(),
             time: self.time,
+            touching: self.touching.clone(),
             id: fresh_id(),
             version: 0,
         }
@@ -45,6 +48,7 @@ impl Clone for State {
 impl State {
     pub(crate) fn new(positions: Vec<Vec3>, velocities: Vec<Vec3>) -> Self {
         Self {
+            touching: vec![false; positions.len()],
             positions,
             velocities,
             time: 0.0,
@@ -95,11 +99,28 @@ impl State {
         &mut self.velocities
     }
 
-    /// Mutable positions and velocities at once. Integrators with history
-    /// restart on the next step.
-    pub fn positions_and_velocities_mut(&mut self) -> (&mut [Vec3], &mut [Vec3]) {
+    /// Per particle: whether the contact response at the end of the last
+    /// step pushed it out of an obstacle. Restitution applies only to
+    /// particles that were not touching: a particle resting on an obstacle,
+    /// or pressed into it by the body it belongs to, does not bounce.
+    #[must_use]
+    pub fn touching(&self) -> &[bool] {
+        &self.touching
+    }
+
+    /// The contact flags, without invalidating the history of integrators.
+    pub(crate) fn touching_mut(&mut self) -> &mut [bool] {
+        &mut self.touching
+    }
+
+    /// Positions, velocities and contact flags for the contact response.
+    pub(crate) fn contact_mut(&mut self) -> (&mut [Vec3], &mut [Vec3], &mut [bool]) {
         self.version += 1;
-        (&mut self.positions, &mut self.velocities)
+        (
+            &mut self.positions,
+            &mut self.velocities,
+            &mut self.touching,
+        )
     }
 
     /// Positions and velocities for placing pinned particles, which does not

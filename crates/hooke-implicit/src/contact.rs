@@ -5,19 +5,23 @@
 //! prescribed, `zᵢ = pᵢ'(t + h) − vᵢ`, so it ends the step at its path's
 //! velocity.
 //!
-//! At the start of a step, a free particle within the contact margin of an
-//! obstacle (`φ ≤ margin`) that approaches or rests on it
-//! (`(vᵢ − u)·n ≤ 0`, `u` the obstacle's velocity) is constrained along the
-//! normal `n`: its filter becomes `Sᵢ = I − n nᵀ` and its velocity change
-//! in that direction is prescribed,
+//! At the start of a step of `h` s, a free particle that would reach an
+//! obstacle within the step at its present velocity — `φ + h min(v_n, 0) ≤
+//! margin`, with `φ` the signed distance, `n` the normal and
+//! `v_n = (vᵢ − u)·n` its normal velocity relative to the obstacle's `u` —
+//! is constrained along `n`: its filter becomes `Sᵢ = I − n nᵀ` and its
+//! velocity change in that direction is prescribed,
+//! `zᵢ = (u·n + w − vᵢ·n) n`, with the relative normal velocity
 //!
 //! ```text
-//! zᵢ = (u·n − e min((vᵢ − u)·n, 0) − vᵢ·n) n,
+//! w = −φ/h       arriving (φ > margin): it lands on the surface at the step's end;
+//! w = e·|v_n|    at the surface after landing, or touching it first: the rebound;
+//! w = 0          resting on it, or pressed into it by its own body.
 //! ```
 //!
-//! so the new velocity leaves the surface at the obstacle's speed (plus the
-//! rebound `e` of an impact) and the particle slides freely in the tangent
-//! plane. The step solves for `Δv = y + z` with `S y = y` from
+//! So a contact never leaves a particle inside an obstacle (pushing it out
+//! afterwards would store energy in its springs), and the particle slides
+//! freely in the tangent plane. The step solves for `Δv = y + z` with `S y = y` from
 //! `S A y = S (b − A z)`. The constraint's normal impulse is then
 //! `λᵢ = n·(A Δv − b)ᵢ`. Negative, the constraint holds the particle down:
 //! it is released, for the step's remaining Newton iterations and the next
@@ -47,6 +51,9 @@ pub(crate) struct Contacts {
     active: Vec<Option<Active>>,
     /// Particles whose constraint pulled in the last step: free for one step.
     released: Vec<bool>,
+    /// Particles that landed on an obstacle in the last step: the normal
+    /// speed they hit it with, for their rebound.
+    impact: Vec<f64>,
     /// The prescribed velocity changes `z`.
     pub(crate) prescribed: Vec<Vec3>,
     /// Scratch for `A z` before the solve and `A y` after it.
@@ -54,10 +61,11 @@ pub(crate) struct Contacts {
 }
 
 impl Contacts {
-    /// Chooses the constrained particles at the start of a step from `x`,
-    /// `v` at `time`, and sets their filters and prescribed velocity
-    /// changes, and those of the scripted pins, which end the step at their
-    /// path's velocity at `end`; returns whether any velocity change is
+    /// Chooses the constrained particles at the start of a step of `h` s
+    /// from `x`, `v` at `time` (with `touching` from the last step's contact
+    /// response), and sets their filters and prescribed velocity changes,
+    /// and those of the scripted pins, which end the step at their path's
+    /// velocity at `time + h`; returns whether any velocity change is
     /// prescribed.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn begin(
@@ -65,14 +73,16 @@ impl Contacts {
         system: &System,
         x: &[Vec3],
         v: &[Vec3],
+        touching: &[bool],
         time: f64,
-        end: f64,
+        h: f64,
         margin: f64,
         filters: &mut [Filter],
     ) -> bool {
         let n = x.len();
         self.active.resize(n, None);
         self.released.resize(n, false);
+        self.impact.resize(n, 0.0);
         self.prescribed.resize(n, Vec3::zeros());
         self.product.resize(n, Vec3::zeros());
         let mut any = false;
@@ -82,36 +92,49 @@ impl Contacts {
             }
             filters[i] = Filter::Free;
             self.prescribed[i] = Vec3::zeros();
-            self.active[i] = None;
+            let was_free = self.active[i].take().is_none() && !touching[i];
+            let impact = std::mem::take(&mut self.impact[i]);
             if std::mem::take(&mut self.released[i]) {
                 continue;
             }
-            let deepest = system
+            // The obstacle reached deepest within the step, moving as now.
+            let reached = system
                 .obstacles()
                 .iter()
                 .enumerate()
-                .map(|(k, o)| (k, o.distance(x[i], time)))
-                .filter(|&(k, (phi, normal))| {
-                    let u = system.obstacles()[k].velocity(time);
-                    phi <= margin && (v[i] - u).dot(&normal) <= RESTING
+                .map(|(k, o)| {
+                    let (phi, normal) = o.distance(x[i], time);
+                    (k, phi, normal, (v[i] - o.velocity(time)).dot(&normal))
                 })
-                .min_by(|a, b| a.1.0.total_cmp(&b.1.0));
-            if let Some((k, (_, normal))) = deepest {
-                let obstacle = &system.obstacles()[k];
-                let u = obstacle.velocity(time);
-                let approach = (v[i] - u).dot(&normal).min(0.0);
-                let target = u.dot(&normal) - obstacle.restitution * approach;
-                self.prescribed[i] = (target - v[i].dot(&normal)) * normal;
-                filters[i] = Filter::Plane(normal);
-                self.active[i] = Some(Active {
-                    obstacle: k,
-                    normal,
-                });
-                any = true;
-            }
+                .filter(|&(_, phi, _, approach)| {
+                    approach <= RESTING && phi + h * approach.min(0.0) <= margin
+                })
+                .min_by(|a, b| (a.1 + h * a.3).total_cmp(&(b.1 + h * b.3)));
+            let Some((k, phi, normal, approach)) = reached else {
+                continue;
+            };
+            let obstacle = &system.obstacles()[k];
+            let relative = if phi > margin {
+                // Arriving: land on the surface at the end of the step, and
+                // rebound in the next.
+                self.impact[i] = -approach;
+                -phi / h
+            } else if was_free {
+                -obstacle.restitution * approach.min(0.0)
+            } else {
+                obstacle.restitution * impact
+            };
+            let target = obstacle.velocity(time).dot(&normal) + relative;
+            self.prescribed[i] = (target - v[i].dot(&normal)) * normal;
+            filters[i] = Filter::Plane(normal);
+            self.active[i] = Some(Active {
+                obstacle: k,
+                normal,
+            });
+            any = true;
         }
         for (i, path) in system.pin_paths() {
-            self.prescribed[*i] = path.velocity(end) - v[*i];
+            self.prescribed[*i] = path.velocity(time + h) - v[*i];
             any = true;
         }
         any

@@ -316,8 +316,9 @@ impl Integrator for Implicit {
                 system,
                 x0,
                 v0,
+                state.touching(),
                 time,
-                time + dt,
+                dt,
                 self.contact_margin,
                 topology.filters_mut(),
             );
