@@ -7,7 +7,16 @@
 //! - springs (`i`, `j`, stiffness `k`, rest length `L`, axial damping `c`) —
 //!   see [`Spring`] for the force and its Jacobian blocks;
 //! - gravity `mᵢ g` and air damping `−γ vᵢ`, if declared;
-//! - pins: a pinned particle has zero acceleration.
+//! - pins: a pinned particle has zero acceleration, or follows a scripted
+//!   [`Path`] ([`SystemBuilder::pin_moving`]);
+//! - kinematic [`Obstacle`]s (plane, sphere, box, capsule, optionally moving
+//!   along a [`Path`]) that particles cannot enter, with restitution and
+//!   Coulomb friction. Every integrator ends its step with
+//!   [`System::end_step`], which places the scripted pins and resolves
+//!   contacts (push out along the normal, then the normal and friction
+//!   impulses: [`respond_to_contact`]); the implicit integrators also hold
+//!   contacts as constraints inside their solve. A system with neither runs
+//!   none of this code.
 //!
 //! The pieces:
 //!
