@@ -37,6 +37,22 @@
 //! nonlinear motion (its energy wanders by about ±20 J on a chain with a
 //! 10⁶ mass ratio); use it with Newton iterations.
 //!
+//! # Contacts and scripted pins
+//!
+//! Obstacles and scripted pins act as Baraff–Witkin constraints inside the
+//! solve: a constrained particle's filter removes the constrained
+//! directions from the conjugate-gradient iteration (or from the Cholesky
+//! system) and its velocity change along them is prescribed, `Δv = y + z`
+//! with `S A y = S (b − A z)`. A scripted pin ends the step at its path's
+//! velocity. A particle that would reach an obstacle within the step is
+//! held along the normal so that it lands on the surface (never inside it),
+//! then rebounds with the obstacle's restitution, rests, or — when the
+//! constraint's normal impulse `λ = n·(A Δv − b)` turns negative, i.e. the
+//! constraint would hold it down — is released at once. The impulse also
+//! sets the Coulomb friction applied after the last Newton iteration.
+//! Particles within [`Implicit::with_contact_margin`] of an obstacle count
+//! as touching it.
+//!
 //! # Storage
 //!
 //! The matrix is symmetric and made of symmetric 3x3 blocks: one diagonal
