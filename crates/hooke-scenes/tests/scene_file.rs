@@ -394,3 +394,43 @@ fn a_scene_without_bodies_is_an_error() {
     let error = parse("[simulation]\nduration = 1.0\n").unwrap_err();
     assert_eq!(error.key, "bodies");
 }
+
+#[test]
+fn the_mesh_scenes_pin_the_vertices_their_comments_name() {
+    let tube = builtin::load("obj-tube").unwrap();
+    let positions = tube.system.initial_positions();
+    let pinned: Vec<usize> = tube.system.pinned().collect();
+    assert_eq!(pinned.len(), 12);
+    assert!(pinned.iter().all(|&p| (positions[p].y - 1.0).abs() < 1e-9));
+    let bracket = builtin::load("tet-bracket").unwrap();
+    let positions = bracket.system.initial_positions();
+    let pinned: Vec<usize> = bracket.system.pinned().collect();
+    assert_eq!(pinned.len(), 6);
+    assert!(pinned.iter().all(|&p| (positions[p].y - 0.7).abs() < 1e-9));
+    let ball = builtin::load("layered-ball").unwrap();
+    assert_eq!(ball.system.particle_count(), 2 * 42);
+}
+
+#[test]
+fn the_default_scene_steps_stably_at_its_own_dt() {
+    let scene = builtin::load("stiff-cloth").unwrap();
+    let mut integrator = scene.integrator.build().unwrap();
+    let mut state = scene.system.initial_state();
+    for _ in 0..10 {
+        integrator
+            .step(&scene.system, &mut state, scene.timing.dt)
+            .unwrap();
+    }
+    let top = scene.system.initial_positions()[0].y;
+    assert!(
+        state
+            .positions()
+            .iter()
+            .all(|x| x.iter().all(|c| c.is_finite()))
+    );
+    // After 10 steps the free corner has fallen, but by no more than
+    // backward Euler's free fall, h² g (1 + 2 + … + 10) = 55 h² g.
+    let fall = top - state.positions()[1599].y;
+    let free_fall = 55.0 * scene.timing.dt.powi(2) * 9.81;
+    assert!(fall > 0.01 && fall < free_fall, "{fall} vs {free_fall}");
+}
