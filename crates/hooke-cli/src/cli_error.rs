@@ -12,6 +12,10 @@ use crate::error::OutputError;
 /// frames and a [`Summary`](crate::Summary) saying what went wrong.
 #[derive(Debug, Error)]
 pub enum CliError {
+    /// A scene file or built-in scene that cannot be read, naming the file,
+    /// line and key.
+    #[error(transparent)]
+    SceneFile(#[from] hooke_scenes::file::SceneFileError),
     /// Writing a frame, picture or animation failed.
     #[error(transparent)]
     Output(#[from] OutputError),

@@ -89,14 +89,20 @@ pub fn describe(scene: &Scene) -> Result<String, CliError> {
     line(
         "timing",
         format!(
-            "{} s at dt = {} s: {steps} steps",
-            timing.duration, timing.dt
+            "{} s at dt = {}: {steps} steps",
+            timing.duration,
+            step_text(timing.dt)
         ),
     );
+    let cadence = if every == 1 {
+        "every step".to_owned()
+    } else {
+        format!("every {every} steps")
+    };
     line(
         "frames",
         format!(
-            "{} at {} per second (every {every} steps)",
+            "{} at {} per second ({cadence})",
             steps / every + 1,
             timing.frame_rate
         ),
@@ -122,7 +128,11 @@ fn body_line(body: &SceneBody) -> String {
 fn obstacle_line(obstacle: &Obstacle) -> String {
     let shape = match obstacle.shape {
         hooke_core::Shape::Plane { point, normal } => {
-            format!("plane through {} with normal {}", vector(point), vector(normal))
+            format!(
+                "plane through {} with normal {}",
+                vector(point),
+                vector(normal)
+            )
         }
         hooke_core::Shape::Sphere { center, radius } => {
             format!("sphere at {} of radius {radius} m", vector(center))
@@ -178,6 +188,17 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
                 format!(", {solver}, linearised (one Newton iteration)")
             }
         }
+    }
+}
+
+/// A step size for people: `1/60 s` when it is the reciprocal of a whole
+/// number, otherwise the seconds with six significant digits.
+pub(crate) fn step_text(dt: f64) -> String {
+    let per_second = dt.recip().round();
+    if per_second >= 1.0 && (per_second * dt - 1.0).abs() < 1e-9 {
+        format!("1/{per_second} s")
+    } else {
+        format!("{dt:.6e} s")
     }
 }
 

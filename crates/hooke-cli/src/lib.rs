@@ -90,6 +90,7 @@
 mod animation;
 mod bounds;
 mod camera;
+mod cli;
 mod cli_error;
 mod describe;
 mod error;
@@ -107,6 +108,7 @@ mod tessellate;
 pub use animation::{AnimationWriter, MAX_GIF_FRAMES, MAX_GIF_WIDTH};
 pub use bounds::Bounds;
 pub use camera::{Camera, MAX_IMAGE_SIDE, Projected, View};
+pub use cli::{DEFAULT_SCENE, main, run_cli};
 pub use cli_error::CliError;
 pub use describe::describe;
 pub use error::{OutputError, Primitive};

@@ -196,8 +196,7 @@ pub fn run(
         options.preview_size.1,
         &View::default(),
     )?;
-    let picture =
-        Renderer::new(camera).render(&output.mesh, shown, &obstacles_at(system, time))?;
+    let picture = Renderer::new(camera).render(&output.mesh, shown, &obstacles_at(system, time))?;
     save_png(&picture, &options.out.join(PREVIEW_FILE))?;
     if let Some(animation) = output.animation.take() {
         animation.writer.finish()?;

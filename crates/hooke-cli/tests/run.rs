@@ -178,24 +178,36 @@ fn cloth_on_sphere_writes_frames_pictures_and_summary() {
     .unwrap();
 
     // 12 steps of 1/60 s, a frame every 2 steps: frames 0..=6.
-    assert_eq!((summary.steps, summary.steps_planned, summary.frames), (12, 12, 7));
+    assert_eq!(
+        (summary.steps, summary.steps_planned, summary.frames),
+        (12, 12, 7)
+    );
     assert_eq!(calls.last(), Some(&(12, 12)));
     assert_eq!(calls.len(), 12);
     assert_eq!(check_frames(&out, 64, 2 * 7 * 7, 0), 7);
     for file in [PREVIEW_FILE, ANIMATION_FILE] {
-        assert!(std::fs::metadata(out.join(file)).unwrap().len() > 0, "{file}");
+        assert!(
+            std::fs::metadata(out.join(file)).unwrap().len() > 0,
+            "{file}"
+        );
     }
     let preview = image_size(&out.join(PREVIEW_FILE));
     assert_eq!(preview, (960, 720));
 
     let (json, read) = read_summary(&out);
-    assert_eq!((read.scene, read.steps), (summary.scene.clone(), summary.steps));
+    assert_eq!(
+        (read.scene, read.steps),
+        (summary.scene.clone(), summary.steps)
+    );
     assert_eq!(json["scene"], "cloth on sphere");
     assert_eq!(json["integrator"], "backward-euler");
     assert_eq!(json["finite"], true);
     assert!(json["error"].is_null());
     assert!(json["linear_iterations_mean"].is_number());
-    assert_eq!((summary.particles, summary.springs), (64, scene.system.springs().len()));
+    assert_eq!(
+        (summary.particles, summary.springs),
+        (64, scene.system.springs().len())
+    );
     assert!(summary.energy_max >= summary.energy_initial);
     assert!(summary.contacts_max > 0, "the cloth reached the sphere");
     assert!(summary.max_strain > 0.0 && summary.max_strain < 0.5);
@@ -207,7 +219,12 @@ fn cloth_on_sphere_writes_frames_pictures_and_summary() {
 fn explicit_run_has_no_linear_iterations_and_draws_segments() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("rope");
-    let summary = run(&swinging_rope(), &RunOptions::new(&out).gif(false), |_, _| {}).unwrap();
+    let summary = run(
+        &swinging_rope(),
+        &RunOptions::new(&out).gif(false),
+        |_, _| {},
+    )
+    .unwrap();
     assert_eq!(summary.steps, 200);
     assert_eq!(summary.frames, 11);
     assert_eq!(check_frames(&out, 11, 0, 10), 11);
