@@ -184,7 +184,7 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
     };
     writeln!(
         out,
-        "{}: {} steps to t = {:.3} s in {:.2} s wall, {:.2} ms per step (median){solver}",
+        "{}: {} steps to t = {:.3} s in {:.2} s wall, {:.3} ms per step (median){solver}",
         summary.integrator, summary.steps, summary.time, summary.wall_s, summary.step_ms_median
     )?;
     writeln!(
