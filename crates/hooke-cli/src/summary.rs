@@ -56,10 +56,10 @@ pub struct Summary {
     pub energy_initial: f64,
     /// Energy of the last state, J.
     pub energy_final: f64,
-    /// Largest energy over the written frames and the last state, J.
+    /// Largest energy over the written frames, J (the last state is one
+    /// of them unless the run diverged).
     pub energy_max: f64,
-    /// Largest spring strain `|l − L|/L` over the written frames and the
-    /// last state.
+    /// Largest spring strain `|l − L|/L` over the written frames.
     pub max_strain: f64,
     /// Whether every state of the run stayed finite: `false` when a step
     /// produced a NaN or infinite value and the run stopped there.
