@@ -434,3 +434,26 @@ fn the_default_scene_steps_stably_at_its_own_dt() {
     let free_fall = 55.0 * scene.timing.dt.powi(2) * 9.81;
     assert!(fall > 0.01 && fall < free_fall, "{fall} vs {free_fall}");
 }
+
+#[test]
+fn counts_beyond_the_particle_limit_are_errors() {
+    let error = error_at(
+        &CLOTH.replace("rows = 3", "rows = 4000000000"),
+        5,
+        "bodies[0].rows",
+    );
+    assert!(
+        error.to_string().contains("at most 1000000 particles"),
+        "{error}"
+    );
+    error_at(
+        "[[bodies]]\ntype = \"lattice\"\ncells = [18446744073709551615, 2, 2]\n",
+        3,
+        "bodies[0].cells",
+    );
+    error_at(
+        "[[bodies]]\ntype = \"rope\"\nstart = [0, 0, 0]\nend = [1, 0, 0]\nsegments = 18446744073709551615\n",
+        5,
+        "bodies[0].segments",
+    );
+}

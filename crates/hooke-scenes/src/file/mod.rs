@@ -39,24 +39,26 @@
 //! and the dotted key.
 
 mod bodies;
+mod cloth;
 mod error;
 mod integrator;
+mod lattice;
 mod meshes;
 mod obstacles;
 mod pins;
+mod rope;
 mod schema;
+mod tables;
 mod values;
 
 use std::ops::Range;
 use std::path::Path;
 
 use hooke_core::{BuildError, SystemBuilder};
-use serde::de::DeserializeOwned;
-use toml::Spanned;
-use toml::de::{DeTable, DeValue, ValueDeserializer};
+use toml::de::DeTable;
 
 use crate::{Scene, SceneBody};
-use bodies::{At, Built};
+use bodies::At;
 use error::Source;
 pub use error::{ErrorKind, SceneFileError};
 pub(crate) use meshes::Meshes;
@@ -66,12 +68,6 @@ use values::{non_negative, vector};
 /// The most particles a scene file may declare, over all its bodies.
 /// Larger systems can still be built in code.
 pub const MAX_PARTICLES: usize = 1_000_000;
-
-/// The body types, the values of a body's `type`.
-const BODY_TYPES: [&str; 6] = ["cloth", "rope", "lattice", "tet-mesh", "layered", "obj"];
-
-/// The obstacle shapes, the values of an obstacle's `shape`.
-const SHAPES: [&str; 4] = ["plane", "sphere", "box", "capsule"];
 
 /// Reads and parses the scene file at `path`; mesh paths in it are
 /// relative to its directory.
@@ -123,7 +119,7 @@ pub(crate) fn parse_with(
 
     let mut scene_bodies = Vec::new();
     let mut placed = Vec::new();
-    let body_values = tables(&src, body_values, "bodies")?;
+    let body_values = tables::tables(&src, body_values, "bodies")?;
     if body_values.is_empty() {
         return Err(src.error(
             None,
@@ -136,7 +132,7 @@ pub(crate) fn parse_with(
             key: format!("bodies[{i}]"),
             span: value.span(),
         };
-        let (kind, built) = body(&src, meshes, value, &at)?;
+        let (kind, built) = tables::body(&src, meshes, value, &at)?;
         let springs_before = builder_springs(&placed);
         let placement = built.body.add_to(&mut builder);
         if placement.range().end > MAX_PARTICLES {
@@ -166,7 +162,7 @@ pub(crate) fn parse_with(
         ));
     }
     let mut obstacle_places = Vec::new();
-    for (k, value) in tables(&src, obstacle_values, "obstacles")?
+    for (k, value) in tables::tables(&src, obstacle_values, "obstacles")?
         .into_iter()
         .enumerate()
     {
@@ -174,7 +170,7 @@ pub(crate) fn parse_with(
             key: format!("obstacles[{k}]"),
             span: value.span(),
         };
-        builder.obstacle(obstacle(&src, value, &at)?);
+        builder.obstacle(tables::obstacle(&src, value, &at)?);
         obstacle_places.push(at);
     }
     let system = builder
@@ -221,117 +217,6 @@ fn world(
         }
     }
     Ok(())
-}
-
-/// The tables of an array of tables (`[[bodies]]`), none if absent.
-fn tables<'i>(
-    src: &Source<'_>,
-    value: Option<Spanned<DeValue<'i>>>,
-    key: &str,
-) -> Result<Vec<Spanned<DeValue<'i>>>, SceneFileError> {
-    let Some(value) = value else {
-        return Ok(Vec::new());
-    };
-    let span = value.span();
-    match value.into_inner() {
-        DeValue::Array(items) => Ok(items.into_iter().collect()),
-        other => Err(src.invalid(
-            span,
-            key,
-            format!("a {}", other.type_str()),
-            format!("an array of tables (`[[{key}]]`)"),
-        )),
-    }
-}
-
-/// The string under `tag` in `value`, which must be a table, checked
-/// against `allowed`.
-fn tag(
-    src: &Source<'_>,
-    value: &Spanned<DeValue<'_>>,
-    tag: &str,
-    allowed: &[&str],
-    at: &At,
-) -> Result<String, SceneFileError> {
-    let Some(table) = value.get_ref().as_table() else {
-        return Err(src.invalid(
-            value.span(),
-            &at.key,
-            format!("a {}", value.get_ref().type_str()),
-            "a table",
-        ));
-    };
-    let key = values::key(&at.key, tag);
-    let Some(tagged) = table.get(tag) else {
-        return Err(src.error(
-            Some(value.span()),
-            key,
-            ErrorKind::Schema(format!("missing field `{tag}`")),
-        ));
-    };
-    let options = allowed
-        .iter()
-        .map(|n| format!("\"{n}\""))
-        .collect::<Vec<_>>()
-        .join(", ");
-    match tagged.get_ref().as_str() {
-        Some(name) if allowed.contains(&name) => Ok(name.to_owned()),
-        Some(name) => Err(src.invalid(
-            tagged.span(),
-            key,
-            format!("\"{name}\""),
-            format!("one of {options}"),
-        )),
-        None => Err(src.invalid(
-            tagged.span(),
-            key,
-            format!("a {}", tagged.get_ref().type_str()),
-            format!("a string, one of {options}"),
-        )),
-    }
-}
-
-/// Deserializes the table `value` at `at` as a `T`.
-fn read<T: DeserializeOwned>(
-    src: &Source<'_>,
-    value: Spanned<DeValue<'_>>,
-    at: &At,
-) -> Result<T, SceneFileError> {
-    serde_path_to_error::deserialize(ValueDeserializer::from(value))
-        .map_err(|e| src.serde(&at.key, e))
-}
-
-/// One `[[bodies]]` table: its type and the body it describes.
-fn body(
-    src: &Source<'_>,
-    meshes: Meshes<'_>,
-    value: Spanned<DeValue<'_>>,
-    at: &At,
-) -> Result<(String, Built), SceneFileError> {
-    let kind = tag(src, &value, "type", &BODY_TYPES, at)?;
-    let built = match kind.as_str() {
-        "cloth" => bodies::cloth(src, read(src, value, at)?, at),
-        "rope" => bodies::rope(src, read(src, value, at)?, at),
-        "lattice" => bodies::lattice(src, read(src, value, at)?, at),
-        "tet-mesh" => meshes::tet_mesh(src, meshes, read(src, value, at)?, at),
-        "layered" => meshes::layered(src, meshes, read(src, value, at)?, at),
-        _ => meshes::obj_shell(src, meshes, read(src, value, at)?, at),
-    }?;
-    Ok((kind, built))
-}
-
-/// One `[[obstacles]]` table.
-fn obstacle(
-    src: &Source<'_>,
-    value: Spanned<DeValue<'_>>,
-    at: &At,
-) -> Result<hooke_core::Obstacle, SceneFileError> {
-    match tag(src, &value, "shape", &SHAPES, at)?.as_str() {
-        "plane" => obstacles::plane(src, &read(src, value, at)?, at),
-        "sphere" => obstacles::sphere(src, &read(src, value, at)?, at),
-        "box" => obstacles::cuboid(src, &read(src, value, at)?, at),
-        _ => obstacles::capsule(src, &read(src, value, at)?, at),
-    }
 }
 
 /// A [`BuildError`] pointed at the body or obstacle it came from.

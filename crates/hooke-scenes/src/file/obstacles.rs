@@ -118,14 +118,14 @@ pub(crate) fn plane(src: &Source<'_>, t: &PlaneTable, at: &At) -> Result<Obstacl
     let normal = match &t.normal {
         Some(n) => {
             let v = vector(src, n, &key(&at.key, "normal"))?;
-            if v.norm() > 0.0 {
+            if v.norm() > 0.0 && v.norm().is_finite() {
                 v
             } else {
                 return Err(src.invalid(
                     n.span(),
                     key(&at.key, "normal"),
                     format!("{:?}", n.get_ref()),
-                    "a non-zero normal",
+                    "a non-zero normal of finite length",
                 ));
             }
         }
