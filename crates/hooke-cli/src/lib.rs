@@ -1,11 +1,19 @@
-//! The output layer of the `hooke` command: the files a run writes into its
-//! `--out DIR`.
+//! The `hooke` command and its output layer: running a scene and writing
+//! the files of the run into its `--out DIR`.
+//!
+//! [`run`] steps a [`Scene`](hooke_scenes::Scene) from start to end with
+//! the integrator it names, timing every step, and writes:
 //!
 //! | file | written by | format |
 //! | --- | --- | --- |
 //! | `frame_00000.ply`, `frame_00001.ply`, ... | [`write_frame`] | binary little-endian PLY, one file per written frame ([`frame_file_name`]) |
 //! | `preview.png` | [`Renderer::render`] + [`save_png`] | an RGBA PNG picture of one frame |
 //! | `animation.gif` | [`AnimationWriter`] | a looping GIF of the rendered frames, at most [`MAX_GIF_WIDTH`] pixels wide and about [`MAX_GIF_FRAMES`] frames long |
+//! | `summary.json` | [`run`] | the [`Summary`]: what ran, how long each step took, solver work, energy, strain, whether the state stayed finite |
+//!
+//! The bodies of a scene become one [`Mesh`] ([`scene_mesh`]) and its
+//! obstacles drawable [`Shape`]s ([`obstacles_at`]); the camera frames
+//! [`run_bounds`] for the whole run.
 //!
 //! # PLY frames
 //!
@@ -60,9 +68,21 @@
 //! # Ok::<(), hooke_cli::OutputError>(())
 //! ```
 //!
+//! # The command
+//!
+//! [`main`] is the `hooke` binary; [`run_cli`] is the same with its
+//! arguments and output streams passed in, so it can be tested in-process.
+//!
+//! ```text
+//! hooke [run] [SCENE.toml] [--builtin NAME] [--out DIR] [--no-gif] [--duration S] [--quiet]
+//! hooke scenes                 # the built-in scenes
+//! hooke check SCENE.toml       # validate a scene file and say what it holds
+//! ```
+//!
 //! # Errors
 //!
-//! Every fallible function returns an [`OutputError`]; I/O failures name the
+//! The output layer returns [`OutputError`]s, the command [`CliError`]s
+//! (which wrap them); I/O failures name the
 //! file concerned, and bad input (indices out of range, non-finite
 //! positions, degenerate obstacles) names the offending item. Nothing here
 //! panics on user input.
@@ -70,21 +90,35 @@
 mod animation;
 mod bounds;
 mod camera;
+mod cli;
+mod cli_error;
+mod describe;
 mod error;
+mod framing;
 mod mesh;
 mod ply;
 mod render;
+mod runner;
+mod scene_mesh;
 mod shape;
 mod style;
+mod summary;
 mod tessellate;
 
 pub use animation::{AnimationWriter, MAX_GIF_FRAMES, MAX_GIF_WIDTH};
 pub use bounds::Bounds;
 pub use camera::{Camera, MAX_IMAGE_SIDE, Projected, View};
+pub use cli::{DEFAULT_SCENE, main, run_cli};
+pub use cli_error::CliError;
+pub use describe::describe;
 pub use error::{OutputError, Primitive};
+pub use framing::run_bounds;
 pub use mesh::Mesh;
 pub use ply::{frame_file_name, write_frame, write_ply};
 pub use render::{Renderer, save_png};
+pub use runner::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, run};
+pub use scene_mesh::{obstacles_at, scene_mesh};
 pub use shape::Shape;
 pub use style::{Rgb, Style};
+pub use summary::Summary;
 pub use tiny_skia::Pixmap;

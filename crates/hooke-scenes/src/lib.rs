@@ -89,6 +89,13 @@
 //! is unmaintained (it depends on nom 5 and panics on some malformed
 //! files). Convert such meshes to TetGen's `.node`/`.ele` format first.
 //!
+//! # Scene files
+//!
+//! [`file::load`] and [`file::parse`] read a whole [`Scene`] — timing,
+//! integrator, world, bodies, pins and obstacles — from a TOML file
+//! (documented in `docs/scene-format.md`); [`builtin`] holds the scenes of
+//! the repository's `scenes/` folder, compiled in.
+//!
 //! # Errors
 //!
 //! Nothing here panics on user input: bad counts, sizes, masses, stiffnesses,
@@ -96,8 +103,10 @@
 //! [`SceneError`] naming the field, element, vertex, file or line.
 
 mod body;
+pub mod builtin;
 mod cloth;
 mod error;
+pub mod file;
 mod grid;
 mod lattice;
 mod layered;

@@ -1,0 +1,230 @@
+//! The `hooke` command line: [`main`] for the binary and [`run_cli`], the
+//! same with its arguments and output streams passed in.
+
+use std::ffi::OsString;
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand};
+use hooke_scenes::{Scene, builtin, file};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::cli_error::CliError;
+use crate::describe::{describe, step_text};
+use crate::runner::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, run};
+use crate::summary::Summary;
+
+/// The built-in scene `hooke run` runs when given no scene: a stiff cloth
+/// pinned at two corners falling onto a sphere, with backward Euler.
+pub const DEFAULT_SCENE: &str = "stiff-cloth";
+
+/// Simulate mass-spring systems and measure what each integrator costs.
+///
+/// Without a command, `hooke` runs: `hooke` alone runs the default scene
+/// and writes its frames and pictures to hooke-out/.
+#[derive(Debug, Parser)]
+#[command(name = "hooke", version, args_conflicts_with_subcommands = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+    #[command(flatten)]
+    run: RunArgs,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run a scene and write its frames, preview.png, animation.gif and
+    /// summary.json.
+    Run(RunArgs),
+    /// List the built-in scenes.
+    Scenes,
+    /// Validate a scene file and print what it contains.
+    Check {
+        /// The scene file (TOML).
+        scene: PathBuf,
+    },
+}
+
+#[derive(Debug, Args)]
+struct RunArgs {
+    /// A scene file (TOML); without it (and without --builtin), the default
+    /// scene, stiff-cloth.
+    #[arg(value_name = "SCENE")]
+    scene: Option<PathBuf>,
+    /// Run the built-in scene NAME instead (see `hooke scenes`).
+    #[arg(long, value_name = "NAME", conflicts_with = "scene")]
+    builtin: Option<String>,
+    /// The directory to write into; created if missing.
+    #[arg(long, value_name = "DIR", default_value = "hooke-out")]
+    out: PathBuf,
+    /// Do not write animation.gif.
+    #[arg(long)]
+    no_gif: bool,
+    /// Simulated seconds to run instead of the scene's own duration.
+    #[arg(long, value_name = "SECONDS")]
+    duration: Option<f64>,
+    /// Show no progress bar.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+/// The `hooke` binary: [`run_cli`] with the process's arguments, standard
+/// output and standard error.
+#[must_use]
+pub fn main() -> ExitCode {
+    run_cli(
+        std::env::args_os(),
+        &mut std::io::stdout(),
+        &mut std::io::stderr(),
+    )
+}
+
+/// Runs the `hooke` command line `args` (the first being the program name)
+/// and returns its exit code: success, 1 when the command failed (an
+/// invalid scene, a run that stopped early, a file that could not be
+/// written) with `error: ...` on `err`, or 2 for arguments that do not
+/// parse. Results go to `out`; the progress bar of `hooke run` is drawn on
+/// the terminal's standard error only when that is a terminal.
+///
+/// ```
+/// let mut out = Vec::new();
+/// let code = hooke_cli::run_cli(["hooke", "scenes"], &mut out, &mut std::io::sink());
+/// assert_eq!(code, std::process::ExitCode::SUCCESS);
+/// assert!(String::from_utf8(out)?.contains("stiff-cloth"));
+/// # Ok::<(), std::string::FromUtf8Error>(())
+/// ```
+pub fn run_cli<I, T>(args: I, out: &mut dyn Write, err: &mut dyn Write) -> ExitCode
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(error) => {
+            let to: &mut dyn Write = if error.use_stderr() { err } else { out };
+            // Nothing more can be said if the terminal cannot be written to.
+            let _ = write!(to, "{}", error.render());
+            return ExitCode::from(u8::try_from(error.exit_code()).unwrap_or(2));
+        }
+    };
+    let result = match cli.command {
+        None => run_command(&cli.run, out),
+        Some(Command::Run(args)) => run_command(&args, out),
+        Some(Command::Scenes) => list_scenes(out),
+        Some(Command::Check { scene }) => check(&scene, out),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            let _ = writeln!(err, "error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// `hooke run`: an error message when the command failed, including a run
+/// that stopped early.
+fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), String> {
+    let scene = load_scene(args).map_err(|e| e.to_string())?;
+    let steps = scene.timing.steps();
+    writeln!(
+        out,
+        "{}: {} particles, {} springs; {steps} steps of {}",
+        scene.name,
+        scene.system.particle_count(),
+        scene.system.springs().len(),
+        step_text(scene.timing.dt)
+    )
+    .map_err(|e| CliError::from(e).to_string())?;
+    let bar = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(steps as u64)
+    };
+    if let Ok(style) =
+        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} steps, eta {eta}")
+    {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    let options = RunOptions::new(&args.out).gif(!args.no_gif);
+    let summary = run(&scene, &options, |done, _| bar.set_position(done as u64));
+    bar.finish_and_clear();
+    let summary = summary.map_err(|e| e.to_string())?;
+    report(&summary, !args.no_gif, out).map_err(|e| CliError::from(e).to_string())?;
+    match summary.error {
+        Some(error) => Err(format!(
+            "the run stopped after {} of {} steps: {error}",
+            summary.steps, summary.steps_planned
+        )),
+        None => Ok(()),
+    }
+}
+
+fn load_scene(args: &RunArgs) -> Result<Scene, CliError> {
+    let mut scene = match (&args.scene, &args.builtin) {
+        (Some(path), _) => file::load(path)?,
+        (None, Some(name)) => builtin::load(name)?,
+        (None, None) => builtin::load(DEFAULT_SCENE)?,
+    };
+    if let Some(duration) = args.duration {
+        scene.timing.duration = duration;
+    }
+    Ok(scene)
+}
+
+/// Prints what a run did and where its files are.
+fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<()> {
+    let solver = match summary.linear_iterations_mean {
+        Some(iterations) => format!(
+            ", {:.1} Newton and {iterations:.1} linear iterations per step",
+            summary.newton_iterations_mean.unwrap_or(0.0)
+        ),
+        None => String::new(),
+    };
+    writeln!(
+        out,
+        "{}: {} steps to t = {:.3} s in {:.2} s wall, {:.3} ms per step (median){solver}",
+        summary.integrator, summary.steps, summary.time, summary.wall_s, summary.step_ms_median
+    )?;
+    writeln!(
+        out,
+        "energy {:.4} J -> {:.4} J (at most {:.4} J), max strain {:.2} %, at most {} contacts",
+        summary.energy_initial,
+        summary.energy_final,
+        summary.energy_max,
+        100.0 * summary.max_strain,
+        summary.contacts_max
+    )?;
+    let dir = summary.out.display();
+    writeln!(out, "wrote {} frames: {dir}/frame_*.ply", summary.frames)?;
+    writeln!(out, "picture: {dir}/{PREVIEW_FILE}")?;
+    if gif {
+        writeln!(out, "animation: {dir}/{ANIMATION_FILE}")?;
+    }
+    writeln!(out, "summary: {dir}/{SUMMARY_FILE}")
+}
+
+/// `hooke scenes`.
+fn list_scenes(out: &mut dyn Write) -> Result<(), String> {
+    let width = builtin::NAMES.iter().map(|(name, _)| name.len()).max();
+    let listing = builtin::NAMES.iter().try_for_each(|(name, description)| {
+        writeln!(
+            out,
+            "{name:<width$}  {description}",
+            width = width.unwrap_or(0)
+        )
+    });
+    listing.map_err(|e| CliError::from(e).to_string())
+}
+
+/// `hooke check`.
+fn check(path: &std::path::Path, out: &mut dyn Write) -> Result<(), String> {
+    let text = file::load(path)
+        .map_err(CliError::from)
+        .and_then(|scene| describe(&scene))
+        .map_err(|e| e.to_string())?;
+    write!(out, "{text}")
+        .and_then(|()| writeln!(out, "{}: ok", path.display()))
+        .map_err(|e| CliError::from(e).to_string())
+}

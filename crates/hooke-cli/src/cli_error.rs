@@ -1,0 +1,50 @@
+//! [`CliError`]: why the `hooke` command could not do what it was asked.
+
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+use crate::error::OutputError;
+
+/// A failure of a `hooke` command that leaves no usable result: invalid
+/// input, or a file or directory that cannot be written. A run whose
+/// integrator fails part-way is not one of these: it still writes its
+/// frames and a [`Summary`](crate::Summary) saying what went wrong.
+#[derive(Debug, Error)]
+pub enum CliError {
+    /// A scene file or built-in scene that cannot be read, naming the file,
+    /// line and key.
+    #[error(transparent)]
+    SceneFile(#[from] hooke_scenes::file::SceneFileError),
+    /// Writing a frame, picture or animation failed.
+    #[error(transparent)]
+    Output(#[from] OutputError),
+    /// The scene's integrator parameters are out of range.
+    #[error("integrator: {0}")]
+    Parameter(#[from] hooke_core::ParameterError),
+    /// A scene whose timing cannot be run.
+    #[error("timing: {reason}")]
+    InvalidTiming {
+        /// What is wrong, naming the field.
+        reason: &'static str,
+    },
+    /// The output directory could not be created.
+    #[error("cannot create directory {}: {source}", path.display())]
+    CreateDir {
+        /// The directory.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// `summary.json` could not be written.
+    #[error("cannot write {}: {source}", path.display())]
+    WriteSummary {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+    /// The command's own output could not be printed.
+    #[error("cannot print: {0}")]
+    Print(#[from] std::io::Error),
+}

@@ -1,0 +1,207 @@
+//! [`describe`]: a scene in words, as `hooke check` prints it.
+
+use std::fmt::Write;
+
+use hooke_core::{Obstacle, Path, Vec3};
+use hooke_scenes::{IntegratorSpec, Scene, SceneBody, SolverSpec};
+
+use crate::cli_error::CliError;
+use crate::runner::check_timing;
+
+/// What `scene` contains, one fact a line: its particles and springs, its
+/// bodies with what each draws, its obstacles, the integrator with its
+/// parameters and the timing with the number of steps and frames.
+///
+/// ```
+/// use hooke_scenes::{Cloth, IntegratorSpec, Scene, SceneBody, Timing};
+/// let mut builder = hooke_core::SystemBuilder::new();
+/// let cloth = Cloth::grid(4, 4).stretch(1e3).build()?;
+/// let placement = cloth.add_to(&mut builder);
+/// let scene = Scene {
+///     name: "small cloth".into(),
+///     system: builder.build()?,
+///     bodies: vec![SceneBody {
+///         name: "cloth".into(),
+///         placement,
+///         triangles: placement.triangles(&cloth),
+///         segments: Vec::new(),
+///     }],
+///     integrator: IntegratorSpec::backward_euler(1),
+///     timing: Timing { duration: 1.0, dt: 0.01, frame_rate: 25.0 },
+/// };
+/// let text = hooke_cli::describe(&scene)?;
+/// assert!(text.contains("particles   16"));
+/// assert!(text.contains("100 steps"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// [`CliError::Parameter`] for integrator parameters out of range and
+/// [`CliError::InvalidTiming`] for a timing that cannot be run: the checks
+/// a run would fail first.
+pub fn describe(scene: &Scene) -> Result<String, CliError> {
+    check_timing(&scene.timing)?;
+    let integrator = scene.integrator.build()?;
+    let system = &scene.system;
+    let mut text = String::new();
+    let mut line = |label: &str, value: String| {
+        // Writing to a String cannot fail.
+        let _ = writeln!(text, "{label:<11} {value}");
+    };
+    line("scene", scene.name.clone());
+    line(
+        "particles",
+        format!(
+            "{} ({} pinned)",
+            system.particle_count(),
+            system.pinned().count()
+        ),
+    );
+    line("springs", system.springs().len().to_string());
+    line(
+        "gravity",
+        system
+            .gravity()
+            .map_or_else(|| "none".to_owned(), |g| format!("{} m/s²", vector(g))),
+    );
+    if let Some(gamma) = system.air_damping() {
+        line("air damping", format!("{gamma} kg/s"));
+    }
+    line("bodies", scene.bodies.len().to_string());
+    for body in &scene.bodies {
+        line("", body_line(body));
+    }
+    line("obstacles", system.obstacles().len().to_string());
+    for obstacle in system.obstacles() {
+        line("", obstacle_line(obstacle));
+    }
+    line(
+        "integrator",
+        format!(
+            "{}{}",
+            integrator.name(),
+            integrator_parameters(&scene.integrator)
+        ),
+    );
+    let timing = scene.timing;
+    let (steps, every) = (timing.steps(), timing.steps_per_frame());
+    line(
+        "timing",
+        format!(
+            "{} s at dt = {}: {steps} steps",
+            timing.duration,
+            step_text(timing.dt)
+        ),
+    );
+    let cadence = if every == 1 {
+        "every step".to_owned()
+    } else {
+        format!("every {every} steps")
+    };
+    line(
+        "frames",
+        format!(
+            "{} at {} per second ({cadence})",
+            steps / every + 1,
+            timing.frame_rate
+        ),
+    );
+    Ok(text)
+}
+
+fn body_line(body: &SceneBody) -> String {
+    let range = body.placement.range();
+    let mut parts = vec![format!(
+        "{} particles ({}..{})",
+        body.placement.count, range.start, range.end
+    )];
+    if !body.triangles.is_empty() {
+        parts.push(format!("{} triangles", body.triangles.len()));
+    }
+    if !body.segments.is_empty() {
+        parts.push(format!("{} segments", body.segments.len()));
+    }
+    format!("{}: {}", body.name, parts.join(", "))
+}
+
+fn obstacle_line(obstacle: &Obstacle) -> String {
+    let shape = match obstacle.shape {
+        hooke_core::Shape::Plane { point, normal } => {
+            format!(
+                "plane through {} with normal {}",
+                vector(point),
+                vector(normal)
+            )
+        }
+        hooke_core::Shape::Sphere { center, radius } => {
+            format!("sphere at {} of radius {radius} m", vector(center))
+        }
+        hooke_core::Shape::Box {
+            center,
+            half_extents,
+            ..
+        } => format!(
+            "box at {} with half extents {}",
+            vector(center),
+            vector(half_extents)
+        ),
+        hooke_core::Shape::Capsule { a, b, radius } => format!(
+            "capsule from {} to {} of radius {radius} m",
+            vector(a),
+            vector(b)
+        ),
+    };
+    let motion = match &obstacle.path {
+        Path::Fixed => "fixed".to_owned(),
+        Path::Linear { velocity } => format!("moving at {} m/s", vector(*velocity)),
+        Path::Keyframes(keys) => format!("moving through {} keyframes", keys.len()),
+    };
+    format!(
+        "{shape}, {motion}, friction {}, restitution {}",
+        obstacle.friction, obstacle.restitution
+    )
+}
+
+fn integrator_parameters(spec: &IntegratorSpec) -> String {
+    match *spec {
+        IntegratorSpec::Explicit(_) => String::new(),
+        IntegratorSpec::Adaptive { rtol, atol } => format!(", rtol {rtol}, atol {atol}"),
+        IntegratorSpec::Implicit {
+            solver,
+            newton_iterations,
+            newton_tolerance,
+            ..
+        } => {
+            let solver = match solver {
+                SolverSpec::Cholesky => "sparse Cholesky".to_owned(),
+                SolverSpec::Pcg {
+                    tolerance,
+                    max_iterations,
+                } => format!("PCG to {tolerance:e} in at most {max_iterations} iterations"),
+            };
+            if newton_iterations > 1 {
+                format!(
+                    ", {solver}, at most {newton_iterations} Newton iterations to {newton_tolerance} m/s"
+                )
+            } else {
+                format!(", {solver}, linearised (one Newton iteration)")
+            }
+        }
+    }
+}
+
+/// A step size for people: `1/60 s` when it is the reciprocal of a whole
+/// number, otherwise the seconds with six significant digits.
+pub(crate) fn step_text(dt: f64) -> String {
+    let per_second = dt.recip().round();
+    if per_second >= 1.0 && (per_second * dt - 1.0).abs() < 1e-9 {
+        format!("1/{per_second} s")
+    } else {
+        format!("{dt:.6e} s")
+    }
+}
+
+fn vector(v: Vec3) -> String {
+    format!("({}, {}, {})", v.x, v.y, v.z)
+}

@@ -1,0 +1,97 @@
+//! [`Summary`]: what a run did, measured, as written to `summary.json`.
+
+use std::path::PathBuf;
+
+use serde::{Deserialize, Serialize};
+
+/// The measurements of one run, written to `summary.json` in the output
+/// directory.
+///
+/// Times are wall-clock times of this machine. Energies are the total
+/// mechanical energy `T + V_springs + V_gravity` in joules (see
+/// [`hooke_core::Energy`]). Counts that only implicit integrators have are
+/// `null` (`None`) for explicit ones. Numbers that are not finite are
+/// written as `null`, which only happens when a run failed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Summary {
+    /// The scene's name.
+    pub scene: String,
+    /// The integrator's name, e.g. `"backward-euler"`.
+    pub integrator: String,
+    /// Step size, s.
+    pub dt: f64,
+    /// Steps taken (fewer than [`steps_planned`](Self::steps_planned) if
+    /// the run failed).
+    pub steps: usize,
+    /// Steps the scene asked for: its duration over `dt`.
+    pub steps_planned: usize,
+    /// Simulated time reached, s.
+    pub time: f64,
+    /// PLY frames written.
+    pub frames: usize,
+    /// Particles in the system.
+    pub particles: usize,
+    /// Springs in the system.
+    pub springs: usize,
+    /// Wall time of the whole run, output included, s.
+    pub wall_s: f64,
+    /// Median wall time of one step, ms.
+    pub step_ms_median: f64,
+    /// Longest wall time of one step, ms.
+    pub step_ms_max: f64,
+    /// Iterations of the iterative linear solver per step, on average
+    /// (0 for a direct solver); `None` if the integrator solves no linear
+    /// systems.
+    pub linear_iterations_mean: Option<f64>,
+    /// Newton iterations per step, on average (1 for linearised steps);
+    /// `None` for integrators without them.
+    pub newton_iterations_mean: Option<f64>,
+    /// Linear systems solved.
+    pub linear_solves: usize,
+    /// Linear solves that stopped at their iteration cap.
+    pub unconverged_solves: usize,
+    /// Most particle–obstacle contacts at the end of one step.
+    pub contacts_max: usize,
+    /// Energy of the initial state, J.
+    pub energy_initial: f64,
+    /// Energy of the last state, J.
+    pub energy_final: f64,
+    /// Largest energy over the written frames, J (the last state is one
+    /// of them unless the run diverged).
+    pub energy_max: f64,
+    /// Largest spring strain `|l − L|/L` over the written frames.
+    pub max_strain: f64,
+    /// Whether every state of the run stayed finite: `false` when a step
+    /// produced a NaN or infinite value and the run stopped there.
+    pub finite: bool,
+    /// Why the run stopped early, or `None` if it ran to the end.
+    pub error: Option<String>,
+    /// The directory the files were written to.
+    pub out: PathBuf,
+}
+
+/// The median of `values` (the mean of the middle two for an even count),
+/// or 0 for none. NaNs sort last.
+pub(crate) fn median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    match sorted.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => sorted[n / 2],
+        n => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+
+    use super::median;
+
+    #[test]
+    fn median_of_odd_even_and_empty() {
+        assert_relative_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
+        assert_relative_eq!(median(&[4.0, 1.0, 3.0, 2.0]), 2.5);
+        assert_relative_eq!(median(&[]), 0.0);
+    }
+}

@@ -1,0 +1,286 @@
+//! The runner end to end on small scenes built in code: the files it
+//! writes, PLY frames read back by an independent parser, the summary's
+//! fields, and a run that blows up ending gracefully.
+
+use std::path::Path;
+
+use hooke_cli::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, Summary, run};
+use hooke_core::{Obstacle, Shape, SystemBuilder, Vec3};
+use hooke_scenes::{
+    Cloth, Corner, ExplicitMethod, IntegratorSpec, Rope, Scene, SceneBody, Springs, Timing,
+};
+use ply_rs_bw::parser::Parser;
+use ply_rs_bw::ply::{DefaultElement, Property};
+use serde_json::Value;
+
+/// Every field `summary.json` promises.
+const REQUIRED: [&str; 13] = [
+    "scene",
+    "integrator",
+    "dt",
+    "steps",
+    "particles",
+    "springs",
+    "wall_s",
+    "step_ms_median",
+    "linear_iterations_mean",
+    "energy_initial",
+    "energy_final",
+    "max_strain",
+    "finite",
+];
+
+/// An 8×8 cloth pinned at two corners above a sphere, with backward Euler.
+fn cloth_on_sphere(duration: f64) -> Scene {
+    let cloth = Cloth::grid(8, 8)
+        .size(1.0, 1.0)
+        .stretch(Springs::per_spring(2e3).damping(0.5))
+        .shear(500.0)
+        .bend(50.0)
+        .pin_corners([Corner::TopLeft, Corner::TopRight])
+        .offset([-0.5, 0.4, -0.5])
+        .build()
+        .unwrap();
+    let mut builder = SystemBuilder::new();
+    let placement = cloth.add_to(&mut builder);
+    builder.gravity([0.0, -9.81, 0.0]);
+    builder.obstacle(
+        Obstacle::new(Shape::Sphere {
+            center: Vec3::zeros(),
+            radius: 0.3,
+        })
+        .friction(0.3),
+    );
+    Scene {
+        name: "cloth on sphere".into(),
+        system: builder.build().unwrap(),
+        bodies: vec![SceneBody {
+            name: "cloth".into(),
+            placement,
+            triangles: placement.triangles(&cloth),
+            segments: Vec::new(),
+        }],
+        integrator: IntegratorSpec::backward_euler(3),
+        timing: Timing {
+            duration,
+            dt: 1.0 / 60.0,
+            frame_rate: 30.0,
+        },
+    }
+}
+
+/// A rope pinned at one end, swinging down under gravity, with an explicit
+/// method; it has segments and no triangles.
+fn swinging_rope() -> Scene {
+    let rope = Rope::between([0.0, 1.0, 0.0], [1.0, 1.0, 0.0], 10)
+        .stretch(Springs::per_spring(500.0).damping(0.1))
+        .build()
+        .unwrap();
+    let mut builder = SystemBuilder::new();
+    let placement = rope.add_to(&mut builder);
+    builder.pin(placement.first);
+    builder.gravity([0.0, -9.81, 0.0]);
+    builder.obstacle(Obstacle::new(Shape::Plane {
+        point: Vec3::zeros(),
+        normal: Vec3::y(),
+    }));
+    Scene {
+        name: "swinging rope".into(),
+        system: builder.build().unwrap(),
+        bodies: vec![SceneBody {
+            name: "rope".into(),
+            placement,
+            triangles: Vec::new(),
+            segments: rope.segments().to_vec(),
+        }],
+        integrator: IntegratorSpec::Explicit(ExplicitMethod::VelocityVerlet),
+        timing: Timing {
+            duration: 0.2,
+            dt: 1e-3,
+            frame_rate: 50.0,
+        },
+    }
+}
+
+/// Two particles joined by a very stiff spring, stretched, with explicit
+/// Euler at a step far beyond its stability limit: no body, so the spring
+/// is drawn as an edge.
+fn exploding_spring() -> Scene {
+    let mut builder = SystemBuilder::new();
+    let a = builder.particle(1.0, [0.0, 0.0, 0.0]);
+    let b = builder.particle(1.0, [1.5, 0.0, 0.0]);
+    builder.spring(a, b, 1e6).rest_length(1.0);
+    Scene {
+        name: "exploding spring".into(),
+        system: builder.build().unwrap(),
+        bodies: Vec::new(),
+        integrator: IntegratorSpec::Explicit(ExplicitMethod::ExplicitEuler),
+        timing: Timing {
+            duration: 100.0,
+            dt: 0.1,
+            frame_rate: 10.0,
+        },
+    }
+}
+
+/// Parses every frame file in `dir`, checking vertex count, finiteness and
+/// the face and edge counts; returns how many there were.
+fn check_frames(dir: &Path, vertices: usize, faces: usize, edges: usize) -> usize {
+    let mut frames: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == "ply"))
+        .collect();
+    frames.sort();
+    for (index, path) in frames.iter().enumerate() {
+        assert_eq!(path, &dir.join(hooke_cli::frame_file_name(index)));
+        let mut file = std::fs::File::open(path).unwrap();
+        let ply = Parser::<DefaultElement>::new().read_ply(&mut file).unwrap();
+        let positions = &ply.payload["vertex"];
+        assert_eq!(positions.len(), vertices, "{}", path.display());
+        for vertex in positions {
+            for name in ["x", "y", "z"] {
+                let Property::Float(c) = vertex[name] else {
+                    panic!("{name} is not a float");
+                };
+                assert!(c.is_finite(), "{} {name} = {c}", path.display());
+            }
+        }
+        let count = |element: &str| ply.payload.get(element).map_or(0, Vec::len);
+        assert_eq!((count("face"), count("edge")), (faces, edges));
+    }
+    frames.len()
+}
+
+/// Reads `summary.json` as JSON, checks that every required field is there
+/// and that the numbers among them are finite, and returns it typed.
+fn read_summary(dir: &Path) -> (Value, Summary) {
+    let text = std::fs::read_to_string(dir.join(SUMMARY_FILE)).unwrap();
+    let json: Value = serde_json::from_str(&text).unwrap();
+    for field in REQUIRED {
+        let value = json.get(field).unwrap_or_else(|| panic!("{field} missing"));
+        if let Some(number) = value.as_f64() {
+            assert!(number.is_finite(), "{field} = {number}");
+        }
+    }
+    (json.clone(), serde_json::from_value(json).unwrap())
+}
+
+#[test]
+fn cloth_on_sphere_writes_frames_pictures_and_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let scene = cloth_on_sphere(0.2);
+    let mut calls = Vec::new();
+    let summary = run(&scene, &RunOptions::new(&out), |done, total| {
+        calls.push((done, total));
+    })
+    .unwrap();
+
+    // 12 steps of 1/60 s, a frame every 2 steps: frames 0..=6.
+    assert_eq!(
+        (summary.steps, summary.steps_planned, summary.frames),
+        (12, 12, 7)
+    );
+    assert_eq!(calls.last(), Some(&(12, 12)));
+    assert_eq!(calls.len(), 12);
+    assert_eq!(check_frames(&out, 64, 2 * 7 * 7, 0), 7);
+    for file in [PREVIEW_FILE, ANIMATION_FILE] {
+        assert!(
+            std::fs::metadata(out.join(file)).unwrap().len() > 0,
+            "{file}"
+        );
+    }
+    let preview = image_size(&out.join(PREVIEW_FILE));
+    assert_eq!(preview, (960, 720));
+
+    let (json, read) = read_summary(&out);
+    assert_eq!(
+        (read.scene, read.steps),
+        (summary.scene.clone(), summary.steps)
+    );
+    assert_eq!(json["scene"], "cloth on sphere");
+    assert_eq!(json["integrator"], "backward-euler");
+    assert_eq!(json["finite"], true);
+    assert!(json["error"].is_null());
+    assert!(json["linear_iterations_mean"].is_number());
+    assert_eq!(
+        (summary.particles, summary.springs),
+        (64, scene.system.springs().len())
+    );
+    assert!(summary.energy_max >= summary.energy_initial);
+    assert!(summary.contacts_max > 0, "the cloth reached the sphere");
+    assert!(summary.max_strain > 0.0 && summary.max_strain < 0.5);
+    assert!(summary.step_ms_median > 0.0 && summary.wall_s > 0.0);
+    assert!(summary.newton_iterations_mean.is_some_and(|n| n >= 1.0));
+}
+
+#[test]
+fn explicit_run_has_no_linear_iterations_and_draws_segments() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rope");
+    let summary = run(
+        &swinging_rope(),
+        &RunOptions::new(&out).gif(false),
+        |_, _| {},
+    )
+    .unwrap();
+    assert_eq!(summary.steps, 200);
+    assert_eq!(summary.frames, 11);
+    assert_eq!(check_frames(&out, 11, 0, 10), 11);
+    assert!(!out.join(ANIMATION_FILE).exists());
+    assert!(out.join(PREVIEW_FILE).exists());
+    let (json, _) = read_summary(&out);
+    assert!(json["linear_iterations_mean"].is_null());
+    assert!(json["newton_iterations_mean"].is_null());
+    assert_eq!(json["integrator"], "velocity-verlet");
+    assert_eq!(json["finite"], true);
+}
+
+#[test]
+fn a_run_that_blows_up_ends_with_finite_false_and_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("boom");
+    let summary = run(&exploding_spring(), &RunOptions::new(&out), |_, _| {}).unwrap();
+    assert!(!summary.finite);
+    let error = summary.error.as_deref().expect("an error");
+    assert!(error.starts_with("diverged: particle"), "{error}");
+    assert!(summary.steps < summary.steps_planned);
+    // The last good state is the final frame, and everything was written.
+    let frames = check_frames(&out, 2, 0, 1);
+    assert_eq!(frames, summary.frames);
+    assert!(out.join(PREVIEW_FILE).exists() && out.join(ANIMATION_FILE).exists());
+    let text = std::fs::read_to_string(out.join(SUMMARY_FILE)).unwrap();
+    let json: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(json["finite"], false);
+    for field in REQUIRED {
+        assert!(json.get(field).is_some(), "{field} missing");
+    }
+}
+
+#[test]
+fn a_second_run_replaces_the_frames_of_the_first() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("again");
+    let options = RunOptions::new(&out).gif(false);
+    run(&cloth_on_sphere(0.2), &options, |_, _| {}).unwrap();
+    let summary = run(&cloth_on_sphere(0.1), &options, |_, _| {}).unwrap();
+    assert_eq!(summary.frames, 4);
+    assert_eq!(check_frames(&out, 64, 98, 0), 4);
+}
+
+#[test]
+fn invalid_timing_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut scene = cloth_on_sphere(0.2);
+    scene.timing.dt = 0.0;
+    let error = run(&scene, &RunOptions::new(dir.path()), |_, _| {}).unwrap_err();
+    assert_eq!(error.to_string(), "timing: dt must be positive and finite");
+}
+
+/// Width and height of a PNG file, from its IHDR chunk.
+fn image_size(path: &Path) -> (u32, u32) {
+    let bytes = std::fs::read(path).unwrap();
+    let word = |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap());
+    (word(16), word(20))
+}

@@ -1,0 +1,72 @@
+//! `type = "rope"`: a chain of particles between two points.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::bodies::{At, Built, Common, PinNames, family, within_limit};
+use super::error::{SceneFileError, Source};
+use super::schema::{MovingPin, PinRef, SpringsTable, Vector};
+use super::values::{count, key, mass, vector};
+use crate::Rope;
+
+/// `type = "rope"`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RopeTable {
+    #[serde(rename = "type")]
+    _kind: String,
+    name: Option<String>,
+    start: Vector,
+    end: Vector,
+    segments: Spanned<usize>,
+    stretch: Option<Spanned<SpringsTable>>,
+    bend: Option<Spanned<SpringsTable>>,
+    mass: Option<Spanned<f64>>,
+    density: Option<Spanned<f64>>,
+    #[serde(default)]
+    pins: Vec<Spanned<PinRef>>,
+    #[serde(default)]
+    moving_pins: Vec<Spanned<MovingPin>>,
+}
+
+/// Builds a rope.
+pub(crate) fn rope(src: &Source<'_>, t: RopeTable, at: &At) -> Result<Built, SceneFileError> {
+    let segments = count(src, &t.segments, &key(&at.key, "segments"), 1)?;
+    within_limit(
+        src,
+        segments.checked_add(1),
+        t.segments.span(),
+        &key(&at.key, "segments"),
+    )?;
+    let start = vector(src, &t.start, &key(&at.key, "start"))?;
+    let end = vector(src, &t.end, &key(&at.key, "end"))?;
+    if start == end {
+        return Err(src.invalid(
+            t.end.span(),
+            key(&at.key, "end"),
+            format!("{:?}", t.end.get_ref()),
+            "a point different from `start`",
+        ));
+    }
+    let mut rope = Rope::between(start.into(), end.into(), segments);
+    if let Some(s) = family(src, t.stretch.as_ref(), &at.key, "stretch")? {
+        rope = rope.stretch(s);
+    }
+    if let Some(s) = family(src, t.bend.as_ref(), &at.key, "bend")? {
+        rope = rope.bend(s);
+    }
+    if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m")? {
+        rope = rope.mass(m);
+    }
+    Ok(Built {
+        body: rope
+            .build()
+            .map_err(|e| src.scene(e, at.span.clone(), &at.key))?,
+        names: PinNames::Rope { segments },
+        common: Common {
+            name: t.name,
+            pins: t.pins,
+            moving_pins: t.moving_pins,
+        },
+    })
+}

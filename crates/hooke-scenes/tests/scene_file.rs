@@ -1,0 +1,459 @@
+//! The TOML scene format: every shipped and built-in scene loads and
+//! builds, files say what the scene holds, and each kind of malformed file
+//! is an error naming the file, the line and the key.
+
+use std::path::{Path, PathBuf};
+
+use hooke_core::{Path as Motion, Shape, Vec3};
+use hooke_implicit::Scheme;
+use hooke_scenes::file::{self, ErrorKind, SceneFileError};
+use hooke_scenes::{ExplicitMethod, IntegratorSpec, SolverSpec, builtin};
+
+fn scenes_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
+}
+
+fn parse(text: &str) -> Result<hooke_scenes::Scene, SceneFileError> {
+    file::parse(text, Path::new("test.toml"))
+}
+
+/// Parses `text`, expects an error, and checks its file, line and key, in
+/// the fields and in the message.
+fn error_at(text: &str, line: usize, key: &str) -> SceneFileError {
+    let error = parse(text).expect_err("the scene should be rejected");
+    let message = error.to_string();
+    assert_eq!(error.file, Path::new("test.toml"), "{message}");
+    assert_eq!(error.line, Some(line), "{message}");
+    assert_eq!(error.key, key, "{message}");
+    assert!(
+        message.starts_with(&format!("test.toml:{line}: {key}: ")),
+        "{message}"
+    );
+    error
+}
+
+const CLOTH: &str = r#"
+[[bodies]]
+type = "cloth"
+columns = 4
+rows = 3
+stretch = { stiffness = 100.0 }
+"#;
+
+#[test]
+fn every_shipped_scene_loads_and_builds() {
+    let mut count = 0;
+    for entry in std::fs::read_dir(scenes_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let scene = file::load(&path).unwrap_or_else(|e| panic!("{e}"));
+            assert!(scene.system.particle_count() > 0, "{}", path.display());
+            scene.integrator.build().unwrap();
+            count += 1;
+        }
+    }
+    assert_eq!(count, builtin::NAMES.len());
+}
+
+#[test]
+fn every_builtin_loads_like_its_file() {
+    for (name, description) in builtin::NAMES {
+        assert!(!description.is_empty());
+        let scene = builtin::load(name).unwrap_or_else(|e| panic!("{e}"));
+        let from_file = file::load(&scenes_dir().join(format!("{name}.toml"))).unwrap();
+        assert_eq!(scene.name, *name);
+        assert_eq!(
+            scene.system.particle_count(),
+            from_file.system.particle_count()
+        );
+        assert_eq!(
+            scene.system.springs().len(),
+            from_file.system.springs().len()
+        );
+        assert_eq!(scene.bodies, from_file.bodies);
+    }
+}
+
+#[test]
+fn an_unknown_builtin_lists_the_names() {
+    let message = builtin::load("nope").unwrap_err().to_string();
+    assert!(message.contains("\"nope\""), "{message}");
+    for (name, _) in builtin::NAMES {
+        assert!(message.contains(name), "{message}");
+    }
+}
+
+#[test]
+fn the_default_scene_is_a_stiff_40_by_40_cloth_under_backward_euler() {
+    let (name, _) = builtin::NAMES[0];
+    let scene = builtin::load(name).unwrap();
+    assert_eq!(name, "stiff-cloth");
+    assert_eq!(scene.system.particle_count(), 1600);
+    assert_eq!(scene.system.pinned().count(), 2);
+    assert_eq!(scene.system.obstacles().len(), 1);
+    assert!((scene.timing.dt - 1.0 / 60.0).abs() < 1e-15);
+    let IntegratorSpec::Implicit {
+        scheme,
+        solver,
+        newton_iterations,
+        ..
+    } = scene.integrator
+    else {
+        panic!("{:?}", scene.integrator);
+    };
+    assert_eq!(
+        (scheme, solver),
+        (Scheme::BackwardEuler, SolverSpec::Cholesky)
+    );
+    assert!((3..=5).contains(&newton_iterations));
+    // Explicit stability needs dt < 2/ω_max, ω_max ≈ 2√(Σk/m) over one
+    // interior particle's springs; the file promises a 100× smaller step.
+    let masses = scene.system.masses();
+    let centre = 20 * 40 + 20;
+    let sum_k: f64 = scene
+        .system
+        .springs()
+        .iter()
+        .filter(|s| s.i == centre || s.j == centre)
+        .map(|s| s.stiffness)
+        .sum();
+    let explicit_dt = 2.0 / (2.0 * (sum_k / masses[centre]).sqrt());
+    assert!(explicit_dt <= scene.timing.dt / 100.0, "{explicit_dt}");
+}
+
+#[test]
+fn a_cloth_file_says_what_the_scene_holds() {
+    let scene = parse(
+        r#"
+        name = "sheet"
+        [simulation]
+        duration = 2.0
+        dt = 0.005
+        frame_rate = 25
+        [integrator]
+        method = "bdf2"
+        solver = "pcg"
+        tolerance = 1e-7
+        max_iterations = 300
+        newton_iterations = 4
+        [world]
+        gravity = [0.0, -3.0, 0.0]
+        [[bodies]]
+        type = "cloth"
+        columns = 40
+        rows = 40
+        stretch = { stiffness = 5e3 }
+        pins = ["top-left", 1599]
+        [[bodies.moving_pins]]
+        particle = "top-right"
+        velocity = [0.0, 0.5, 0.0]
+        [[obstacles]]
+        shape = "sphere"
+        center = [0.5, -0.5, 0.5]
+        radius = 0.25
+        friction = 0.4
+        restitution = 0.1
+        [[obstacles]]
+        shape = "box"
+        center = [0.0, -2.0, 0.0]
+        half_extents = [1.0, 0.5, 1.0]
+        keyframes = [[0.0, 0.0, 0.0, 0.0], [1.0, 0.0, 1.0, 0.0]]
+        "#,
+    )
+    .unwrap();
+    assert_eq!(scene.name, "sheet");
+    assert_eq!(scene.system.particle_count(), 1600);
+    assert_eq!(scene.bodies[0].triangles.len(), 2 * 39 * 39);
+    assert_eq!(
+        (scene.timing.steps(), scene.timing.steps_per_frame()),
+        (400, 8)
+    );
+    assert_eq!(
+        scene.integrator,
+        IntegratorSpec::Implicit {
+            scheme: Scheme::Bdf2,
+            solver: SolverSpec::Pcg {
+                tolerance: 1e-7,
+                max_iterations: 300
+            },
+            newton_iterations: 4,
+            newton_tolerance: 1e-3,
+        }
+    );
+    let pinned: Vec<usize> = scene.system.pinned().collect();
+    assert_eq!(pinned, [0, 39, 1599]);
+    assert_eq!(
+        scene.system.initial_velocities()[39],
+        Vec3::new(0.0, 0.5, 0.0)
+    );
+    let obstacles = scene.system.obstacles();
+    assert_eq!(obstacles.len(), 2);
+    assert!(
+        matches!(obstacles[0].shape, Shape::Sphere { radius, .. } if (radius - 0.25).abs() < 1e-15)
+    );
+    assert_eq!(
+        (obstacles[0].friction, obstacles[0].restitution),
+        (0.4, 0.1)
+    );
+    assert!(matches!(&obstacles[1].path, Motion::Keyframes(k) if k.len() == 2));
+}
+
+#[test]
+fn defaults_are_backward_euler_cholesky_one_newton_iteration() {
+    let scene = parse(CLOTH).unwrap();
+    assert_eq!(scene.integrator, IntegratorSpec::backward_euler(1));
+    assert!((scene.timing.frame_rate - 60.0).abs() < 1e-12);
+    assert_eq!(scene.name, "test");
+    assert_eq!(scene.system.particle_count(), 12);
+}
+
+#[test]
+fn explicit_and_adaptive_methods_are_named_as_the_integrators_are() {
+    for method in ExplicitMethod::ALL {
+        let text = format!("[integrator]\nmethod = \"{}\"\n{CLOTH}", method.name());
+        assert_eq!(
+            parse(&text).unwrap().integrator,
+            IntegratorSpec::Explicit(method)
+        );
+    }
+    let text = format!("[integrator]\nmethod = \"dormand-prince\"\nrtol = 1e-5\n{CLOTH}");
+    assert_eq!(
+        parse(&text).unwrap().integrator,
+        IntegratorSpec::Adaptive {
+            rtol: 1e-5,
+            atol: 1e-9
+        }
+    );
+}
+
+#[test]
+fn an_unknown_key_is_named_with_its_line() {
+    let error = error_at(&format!("{CLOTH}colums = 3\n"), 7, "bodies[0].colums");
+    assert!(matches!(*error.kind, ErrorKind::Schema(_)));
+    assert!(error.to_string().contains("unknown field `colums`"));
+    error_at(
+        "[simulation]\nduration = 1.0\nsteps = 3\n",
+        3,
+        "simulation.steps",
+    );
+}
+
+#[test]
+fn a_wrong_type_is_named_with_its_line() {
+    let text = CLOTH.replace("stiffness = 100.0", "stiffness = \"stiff\"");
+    let error = error_at(&text, 6, "bodies[0].stretch.stiffness");
+    assert!(error.to_string().contains("expected f64"), "{error}");
+    error_at(
+        &format!("[world]\ngravity = [0.0, -9.81]\n{CLOTH}"),
+        2,
+        "world.gravity",
+    );
+}
+
+#[test]
+fn a_missing_key_is_named_with_its_table_line() {
+    let text = CLOTH.replace("rows = 3\n", "");
+    let error = error_at(&text, 2, "bodies[0].rows");
+    assert!(
+        error.to_string().contains("missing field `rows`"),
+        "{error}"
+    );
+    error_at("[[bodies]]\ncolumns = 3\n", 1, "bodies[0].type");
+}
+
+#[test]
+fn invalid_values_are_named_with_their_lines() {
+    let text = CLOTH.replace("stiffness = 100.0", "stiffness = -5.0");
+    let error = error_at(&text, 6, "bodies[0].stretch.stiffness");
+    assert!(error.to_string().contains("got -5"), "{error}");
+    error_at(
+        &format!("[simulation]\ndt = 0.0\n{CLOTH}"),
+        2,
+        "simulation.dt",
+    );
+    error_at(
+        &CLOTH.replace("columns = 4", "columns = 0"),
+        4,
+        "bodies[0].columns",
+    );
+    error_at(
+        &format!("{CLOTH}[[obstacles]]\nshape = \"sphere\"\ncenter = [0, 0, 0]\nradius = -1\n"),
+        10,
+        "obstacles[0].radius",
+    );
+    error_at(
+        &format!("{CLOTH}[[obstacles]]\nshape = \"plane\"\nnormal = [0, 0, 0]\n"),
+        9,
+        "obstacles[0].normal",
+    );
+    error_at(
+        &format!(
+            "{CLOTH}[[bodies.moving_pins]]\nparticle = 0\nkeyframes = [[1, 0, 0, 0], [0, 1, 1, 1]]\n"
+        ),
+        9,
+        "bodies[0].moving_pins[0].keyframes[1]",
+    );
+    error_at(
+        &format!("[integrator]\nmethod = \"pcg-euler\"\nnewton_iterations = 0\n{CLOTH}"),
+        2,
+        "integrator.method",
+    );
+    error_at(
+        &format!("[integrator]\nnewton_iterations = 0\n{CLOTH}"),
+        2,
+        "integrator.newton_iterations",
+    );
+    error_at(
+        &format!("[integrator]\nsolver = \"pcg\"\ntolerance = 2.0\n{CLOTH}"),
+        3,
+        "integrator.tolerance",
+    );
+    error_at(
+        &format!("[integrator]\nmethod = \"rk4\"\nrtol = 1e-3\n{CLOTH}"),
+        3,
+        "integrator.rtol",
+    );
+}
+
+#[test]
+fn bad_enum_names_list_the_choices() {
+    let error = error_at(
+        &CLOTH.replace("\"cloth\"", "\"sheet\""),
+        3,
+        "bodies[0].type",
+    );
+    assert!(error.to_string().contains("\"tet-mesh\""), "{error}");
+    let error = error_at(
+        &format!("{CLOTH}pins = [\"top-middle\"]\n"),
+        7,
+        "bodies[0].pins[0]",
+    );
+    assert!(error.to_string().contains("\"bottom-right\""), "{error}");
+    let error = error_at(
+        &format!("{CLOTH}plane = \"diagonal\"\n"),
+        7,
+        "bodies[0].plane",
+    );
+    assert!(error.to_string().contains("\"vertical\""), "{error}");
+}
+
+#[test]
+fn a_pin_out_of_range_is_named_with_its_line() {
+    let error = error_at(&format!("{CLOTH}pins = [0, 12]\n"), 7, "bodies[0].pins[1]");
+    assert!(error.to_string().contains("below 12"), "{error}");
+    error_at(
+        "[[bodies]]\ntype = \"rope\"\nstart = [0, 0, 0]\nend = [1, 0, 0]\nsegments = 2\npins = [\"end\", \"middle\"]\n",
+        6,
+        "bodies[0].pins[1]",
+    );
+}
+
+#[test]
+fn a_missing_mesh_file_is_named_with_its_line() {
+    let text = "[[bodies]]\ntype = \"obj\"\n\nmesh = \"meshes/none.obj\"\n";
+    let error = file::parse(text, &scenes_dir().join("broken.toml")).unwrap_err();
+    assert_eq!(
+        (error.line, error.key.as_str()),
+        (Some(4), "bodies[0].mesh")
+    );
+    let message = error.to_string();
+    assert!(
+        message.contains("broken.toml:4: bodies[0].mesh: "),
+        "{message}"
+    );
+    assert!(message.contains("none.obj"), "{message}");
+    let text = "[[bodies]]\ntype = \"tet-mesh\"\nmesh = \"meshes/none\"\n";
+    let error = file::parse(text, &scenes_dir().join("broken.toml")).unwrap_err();
+    assert_eq!(
+        (error.line, error.key.as_str()),
+        (Some(3), "bodies[0].mesh")
+    );
+}
+
+#[test]
+fn mesh_paths_are_relative_to_the_scene_file() {
+    let text = "[[bodies]]\ntype = \"tet-mesh\"\nmesh = \"meshes/bracket.node\"\nedges = { modulus = 10 }\n";
+    let scene = file::parse(text, &scenes_dir().join("any.toml")).unwrap();
+    assert_eq!(scene.system.particle_count(), 60);
+    assert!(file::parse(text, Path::new("elsewhere/any.toml")).is_err());
+}
+
+#[test]
+fn syntax_errors_and_unreadable_files_name_the_file() {
+    let error = parse("[simulation\n").unwrap_err();
+    assert!(matches!(*error.kind, ErrorKind::Syntax(_)));
+    assert_eq!(error.line, Some(1));
+    let missing = scenes_dir().join("no-such-scene.toml");
+    let error = file::load(&missing).unwrap_err();
+    assert!(matches!(*error.kind, ErrorKind::Io(_)));
+    assert!(error.to_string().contains("no-such-scene.toml"));
+}
+
+#[test]
+fn a_scene_without_bodies_is_an_error() {
+    let error = parse("[simulation]\nduration = 1.0\n").unwrap_err();
+    assert_eq!(error.key, "bodies");
+}
+
+#[test]
+fn the_mesh_scenes_pin_the_vertices_their_comments_name() {
+    let tube = builtin::load("obj-tube").unwrap();
+    let positions = tube.system.initial_positions();
+    let pinned: Vec<usize> = tube.system.pinned().collect();
+    assert_eq!(pinned.len(), 12);
+    assert!(pinned.iter().all(|&p| (positions[p].y - 1.0).abs() < 1e-9));
+    let bracket = builtin::load("tet-bracket").unwrap();
+    let positions = bracket.system.initial_positions();
+    let pinned: Vec<usize> = bracket.system.pinned().collect();
+    assert_eq!(pinned.len(), 6);
+    assert!(pinned.iter().all(|&p| (positions[p].y - 0.7).abs() < 1e-9));
+    let ball = builtin::load("layered-ball").unwrap();
+    assert_eq!(ball.system.particle_count(), 2 * 42);
+}
+
+#[test]
+fn the_default_scene_steps_stably_at_its_own_dt() {
+    let scene = builtin::load("stiff-cloth").unwrap();
+    let mut integrator = scene.integrator.build().unwrap();
+    let mut state = scene.system.initial_state();
+    for _ in 0..10 {
+        integrator
+            .step(&scene.system, &mut state, scene.timing.dt)
+            .unwrap();
+    }
+    let top = scene.system.initial_positions()[0].y;
+    assert!(
+        state
+            .positions()
+            .iter()
+            .all(|x| x.iter().all(|c| c.is_finite()))
+    );
+    // After 10 steps the free corner has fallen, but by no more than
+    // backward Euler's free fall, h² g (1 + 2 + … + 10) = 55 h² g.
+    let fall = top - state.positions()[1599].y;
+    let free_fall = 55.0 * scene.timing.dt.powi(2) * 9.81;
+    assert!(fall > 0.01 && fall < free_fall, "{fall} vs {free_fall}");
+}
+
+#[test]
+fn counts_beyond_the_particle_limit_are_errors() {
+    let error = error_at(
+        &CLOTH.replace("rows = 3", "rows = 4000000000"),
+        5,
+        "bodies[0].rows",
+    );
+    assert!(
+        error.to_string().contains("at most 1000000 particles"),
+        "{error}"
+    );
+    error_at(
+        "[[bodies]]\ntype = \"lattice\"\ncells = [18446744073709551615, 2, 2]\n",
+        3,
+        "bodies[0].cells",
+    );
+    error_at(
+        "[[bodies]]\ntype = \"rope\"\nstart = [0, 0, 0]\nend = [1, 0, 0]\nsegments = 18446744073709551615\n",
+        5,
+        "bodies[0].segments",
+    );
+}
