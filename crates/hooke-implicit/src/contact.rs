@@ -140,9 +140,10 @@ impl Contacts {
         any
     }
 
-    /// After the first solve of a step, `S A y = S b'` with `b' = b − A z`:
-    /// frees the particles whose constraint pulls them towards the obstacle
-    /// (`λ = n·(A y − b') < 0`) for the rest of this step (further Newton
+    /// After a solve of a step, `S A x = S b` (the first with `x = y` and
+    /// `b = b − A z`, a Newton iteration with its correction): frees the
+    /// particles whose constraint pulls them towards the obstacle
+    /// (`λ = n·(A x − b) < 0`) for the rest of this step (further Newton
     /// iterations let them go) and the next.
     pub(crate) fn release(
         &mut self,

@@ -371,6 +371,10 @@ impl Integrator for Implicit {
                 &mut report,
             )?;
             newton_solved = true;
+            if constrained {
+                let (matrix, filters) = topology.matrix_and_filters_mut();
+                self.contacts.release(matrix, &w.delta, &w.b, filters);
+            }
             // The Newton step J⁻¹(−g) measures the residual in velocity units.
             let step = w.delta.iter().map(|d| d.amax()).fold(0.0, f64::max);
             report.newton_residual = step;
