@@ -43,28 +43,42 @@ impl Pattern {
         if u32::try_from(particles).is_err() || u32::try_from(springs).is_err() {
             return Err(StepError::SystemTooLarge { particles, springs });
         }
+        // Bucket the springs by their lower endpoint, then sort each row's
+        // few springs by their higher one.
         let ends = |s: &hooke_core::Spring| (s.i.min(s.j), s.i.max(s.j));
-        let mut order: Vec<u32> = (0..springs as u32).collect();
-        order.sort_unstable_by_key(|&s| ends(&system.springs()[s as usize]));
         let mut row_start = vec![0u32; particles + 1];
-        let mut column = Vec::with_capacity(springs);
-        let mut slot = vec![0u32; springs];
-        let mut bandwidth = 0;
-        for (t, &s) in order.iter().enumerate() {
-            let (row, col) = ends(&system.springs()[s as usize]);
-            row_start[row + 1] += 1;
-            // Both fit: checked above.
-            column.push(col as u32);
-            slot[s as usize] = t as u32;
-            bandwidth = bandwidth.max(col - row);
+        for s in system.springs() {
+            row_start[ends(s).0 + 1] += 1;
         }
         for r in 0..particles {
             row_start[r + 1] += row_start[r];
         }
+        let mut next: Vec<u32> = row_start[..particles].to_vec();
+        let mut spring = vec![0u32; springs];
+        for (k, s) in system.springs().iter().enumerate() {
+            let row = ends(s).0;
+            // Both fit: checked above.
+            spring[next[row] as usize] = k as u32;
+            next[row] += 1;
+        }
+        let mut column = vec![0u32; springs];
+        let mut slot = vec![0u32; springs];
+        let mut bandwidth = 0;
+        for row in 0..particles {
+            let slots = row_start[row] as usize..row_start[row + 1] as usize;
+            spring[slots.clone()].sort_unstable_by_key(|&k| ends(&system.springs()[k as usize]).1);
+            for t in slots {
+                let k = spring[t] as usize;
+                let col = ends(&system.springs()[k]).1;
+                column[t] = col as u32;
+                slot[k] = t as u32;
+                bandwidth = bandwidth.max(col - row);
+            }
+        }
         Ok(Self {
             row_start,
             column,
-            spring: order,
+            spring,
             slot,
             bandwidth,
         })
