@@ -66,8 +66,8 @@
 //! cloth sheets, the block product is 3.0–5.1× faster than faer's at every
 //! size from 1 024 to 65 536 particles (1.52 ms against 6.35 ms at 256²), so
 //! the crate keeps it and uses faer for the sparse Cholesky factorization.
-//! The product is bound by its instructions (about 10 cycles per spring),
-//! not by memory: at 256² it reaches 41 % of the machine's STREAM bandwidth.
+//! It executes 54 instructions per spring and at 256² reaches 41 % of the
+//! machine's STREAM bandwidth; `benches/README.md` says why.
 //! The full table and the analysis are in `benches/README.md`.
 //!
 //! ```
