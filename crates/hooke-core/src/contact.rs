@@ -83,18 +83,22 @@ impl System {
         let touching = |i: usize, x: &Vec3| {
             !self.pinned[i] && self.obstacles.iter().any(|o| o.distance(*x, t).0 < 0.0)
         };
-        if !state
+        // Only a state with contacts is edited; the particles before the
+        // first contact are not looked at twice.
+        let Some(first) = state
             .positions()
             .iter()
             .enumerate()
-            .any(|(i, x)| touching(i, x))
-        {
+            .position(|(i, x)| touching(i, x))
+        else {
             state.touching_mut().fill(false);
             return 0;
-        }
+        };
         let (positions, velocities, flags) = state.contact_mut();
+        flags[..first].fill(false);
         let mut contacts = 0;
-        for (i, (x, v)) in positions.iter_mut().zip(velocities.iter_mut()).enumerate() {
+        let particles = positions.iter_mut().zip(velocities.iter_mut());
+        for (i, (x, v)) in particles.enumerate().skip(first) {
             if self.pinned[i] {
                 continue;
             }

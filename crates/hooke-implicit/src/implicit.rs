@@ -320,7 +320,7 @@ impl Integrator for Implicit {
                 time,
                 dt,
                 self.contact_margin,
-                topology.filters_mut(),
+                topology.matrix_and_filters_mut().1,
             );
         let prescribed =
             constrained.then_some((&contacts.prescribed[..], &mut contacts.product[..]));

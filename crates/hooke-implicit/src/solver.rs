@@ -48,12 +48,8 @@ impl Topology {
         &self.matrix
     }
 
-    /// The per-particle filters (pins are `Fixed` from the start).
-    pub(crate) fn filters_mut(&mut self) -> &mut [Filter] {
-        &mut self.filters
-    }
-
-    /// The matrix last assembled and the filters.
+    /// The matrix last assembled and the per-particle filters (pins are
+    /// `Fixed` from the start).
     pub(crate) fn matrix_and_filters_mut(&mut self) -> (&BlockMatrix, &mut [Filter]) {
         (&self.matrix, &mut self.filters)
     }
