@@ -1,0 +1,1 @@
+//! Measurements of mass-spring integrators on a user's scene.
