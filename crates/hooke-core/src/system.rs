@@ -3,7 +3,7 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::{Obstacle, Path, Spring, State, StepError, Vec3};
+use crate::{BuildError, Obstacle, Path, Spring, SpringParameter, State, StepError, Vec3};
 
 static NEXT_SYSTEM_ID: AtomicU64 = AtomicU64::new(1);
 
@@ -153,6 +153,41 @@ impl System {
                 system: self.particle_count(),
             })
         }
+    }
+
+    /// This system with every spring's stiffness multiplied by `factor`:
+    /// the same particles, rest lengths, damping, forces and obstacles, as a
+    /// new system with its own [`System::id`]. The natural frequencies of
+    /// the undamped system scale as `√factor`.
+    ///
+    /// ```
+    /// # use hooke_core::reference::Oscillator;
+    /// let system = Oscillator::undamped(1.0, 4.0).system()?;
+    /// let stiffer = system.with_stiffness_scale(100.0)?;
+    /// assert_eq!(stiffer.springs()[0].stiffness, 400.0);
+    /// assert_ne!(stiffer.id(), system.id());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`BuildError::InvalidSpringParameter`] naming the first spring whose
+    /// scaled stiffness is negative, NaN or infinite (a `factor` that is
+    /// negative or not finite, or one that overflows a stiffness).
+    pub fn with_stiffness_scale(&self, factor: f64) -> Result<Self, BuildError> {
+        let mut scaled = self.clone();
+        scaled.id = fresh_system_id();
+        for (spring, s) in scaled.springs.iter_mut().enumerate() {
+            let value = s.stiffness * factor;
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(BuildError::InvalidSpringParameter {
+                    spring,
+                    parameter: SpringParameter::Stiffness,
+                    value,
+                });
+            }
+            s.stiffness = value;
+        }
+        Ok(scaled)
     }
 
     /// A fresh state at the initial positions and velocities, at `t = 0`.

@@ -1,0 +1,25 @@
+//! [`LabError`]: a measurement that cannot be made, naming why.
+
+use hooke_core::{BuildError, ParameterError};
+use thiserror::Error;
+
+/// A measurement that cannot be made.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum LabError {
+    /// An option out of range.
+    #[error("{name}: got {value}, expected {expected}")]
+    Invalid {
+        /// The option.
+        name: &'static str,
+        /// The value given.
+        value: String,
+        /// What it must be.
+        expected: &'static str,
+    },
+    /// A stiffness scale that the scene's springs cannot take.
+    #[error("scaling the stiffness: {0}")]
+    Scale(#[from] BuildError),
+    /// A method parameter out of range.
+    #[error(transparent)]
+    Parameter(#[from] ParameterError),
+}
