@@ -5,8 +5,8 @@ use std::f64::consts::SQRT_2;
 use std::fmt;
 
 use hooke_core::{Integrator, ParameterError};
-use hooke_scenes::{ExplicitMethod, IntegratorSpec, SolverSpec};
 use hooke_implicit::Scheme;
+use hooke_scenes::{ExplicitMethod, IntegratorSpec, SolverSpec};
 
 /// An integrator the lab can run: one of the ten fixed-step explicit
 /// methods, adaptive Dormand–Prince, backward Euler or BDF2.

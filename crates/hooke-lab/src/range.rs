@@ -99,9 +99,14 @@ mod tests {
 
     #[test]
     fn rejects_what_is_not_a_range() {
-        for bad in ["", "0:1:3", "1:-1:3", "1:10:1", "1:10", "a:b:c", "1:10:3:4", "inf"] {
+        for bad in [
+            "", "0:1:3", "1:-1:3", "1:10:1", "1:10", "a:b:c", "1:10:3:4", "inf",
+        ] {
             let error = bad.parse::<Range>().unwrap_err();
-            assert!(error.to_string().contains("FIRST:LAST:COUNT"), "{bad}: {error}");
+            assert!(
+                error.to_string().contains("FIRST:LAST:COUNT"),
+                "{bad}: {error}"
+            );
         }
     }
 }

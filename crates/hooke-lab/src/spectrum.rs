@@ -63,11 +63,7 @@ pub fn omega_max(system: &System) -> Spectrum {
         .map(|s| s.stiffness_block(x0[s.i], x0[s.j], CompressedSprings::Clamped))
         .collect();
     // M^(−1/2), zero on pinned particles so that they drop out.
-    let scale: Vec<f64> = system
-        .inverse_masses()
-        .iter()
-        .map(|&w| w.sqrt())
-        .collect();
+    let scale: Vec<f64> = system.inverse_masses().iter().map(|&w| w.sqrt()).collect();
 
     let mut row_sums = vec![0.0; 3 * n];
     for (s, h) in system.springs().iter().zip(&blocks) {

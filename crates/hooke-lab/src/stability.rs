@@ -239,14 +239,14 @@ pub fn run_cell(
     let mut integrator = method.build(settings, None)?;
     let mut budget = EnergyBudget::new(system);
     let mut exceeded = false;
-    let outcome = run(system, &mut integrator, dt, steps, |_, state| {
-        match budget.observe(system, state) {
-            Some(ratio) if !(ratio <= energy_bound) => {
-                exceeded = true;
-                Flow::Stop
-            }
-            _ => Flow::Continue,
+    let outcome = run(system, &mut integrator, dt, steps, |_, state| match budget
+        .observe(system, state)
+    {
+        Some(ratio) if ratio.is_nan() || ratio > energy_bound => {
+            exceeded = true;
+            Flow::Stop
         }
+        _ => Flow::Continue,
     });
     let stopped = match (&outcome.failure, exceeded) {
         (Some(error), _) => Some(error.to_string()),

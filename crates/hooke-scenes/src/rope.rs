@@ -31,6 +31,7 @@ pub struct Rope {
     bend: Option<Springs>,
     pin_start: bool,
     pin_end: bool,
+    rest_length_fraction: f64,
 }
 
 impl Rope {
@@ -46,6 +47,7 @@ impl Rope {
             bend: None,
             pin_start: false,
             pin_end: false,
+            rest_length_fraction: 1.0,
         }
     }
 
@@ -89,6 +91,26 @@ impl Rope {
         self
     }
 
+    /// Every spring's rest length as a fraction of its length in the
+    /// initial shape (default 1: the rope starts unstretched). Below 1 the
+    /// rope starts stretched; at 0 its springs have zero rest length and
+    /// are exactly linear, `f = −k (xᵢ − xⱼ)`, at any extension — the
+    /// textbook linear spring. A stiffness given as a modulus is still
+    /// divided by the segment's initial length.
+    ///
+    /// ```
+    /// let rope = hooke_scenes::Rope::between([0.0; 3], [0.0, -1.0, 0.0], 1)
+    ///     .stretch(1.0)
+    ///     .rest_length_fraction(0.0)
+    ///     .build()?;
+    /// assert_eq!(rope.springs()[0].rest_length, 0.0);
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    pub fn rest_length_fraction(mut self, fraction: f64) -> Self {
+        self.rest_length_fraction = fraction;
+        self
+    }
+
     /// Pins particle 0, at `start`.
     ///
     /// ```
@@ -118,8 +140,9 @@ impl Rope {
     ///
     /// # Errors
     /// [`SceneError`] naming the first bad field: no segments, an end point
-    /// that is not finite, coinciding end points, or a mass or spring
-    /// parameter out of range.
+    /// that is not finite, coinciding end points, a rest-length fraction
+    /// that is negative or not finite, or a mass or spring parameter out
+    /// of range.
     pub fn build(self) -> Result<Body, SceneError> {
         let n = count("rope segments", self.segments, 1)?;
         grid_points("rope segments", &[n], 1)?;
@@ -131,6 +154,14 @@ impl Rope {
                 field: "rope end",
                 value: self.end,
                 requirement: "different from the start",
+            });
+        }
+        let fraction = self.rest_length_fraction;
+        if !(fraction.is_finite() && fraction >= 0.0) {
+            return Err(SceneError::InvalidValue {
+                field: "rope rest-length fraction",
+                value: fraction,
+                requirement: "finite and non-negative",
             });
         }
         let segment_mass = self.mass.total(length)? / n as f64;
@@ -159,7 +190,10 @@ impl Rope {
             .filter_map(|(pinned, p)| pinned.then_some(p))
             .collect();
         let segments = (0..n).map(|k| [k, k + 1]).collect();
-        let springs = springs.into_springs();
+        let mut springs = springs.into_springs();
+        for spring in &mut springs {
+            spring.rest_length *= fraction;
+        }
         Body::from_parts(masses, positions, springs, pins, Vec::new(), segments)
     }
 }

@@ -313,6 +313,29 @@ fn invalid_values_are_named_with_their_lines() {
         3,
         "integrator.rtol",
     );
+    error_at(
+        "[[bodies]]\ntype = \"rope\"\nstart = [0, 0, 0]\nend = [1, 0, 0]\nsegments = 2\nrest_length_fraction = -0.5\n",
+        6,
+        "bodies[0].rest_length_fraction",
+    );
+}
+
+#[test]
+fn the_oscillator_scenes_have_linear_springs_at_one_radian_per_second() {
+    // A zero-length spring pulls the bob towards the anchor with −k x,
+    // whatever the bob's position: check the force against that at a point
+    // off the axis, and the frequency √(k/m) = 1 rad/s.
+    for name in ["oscillator", "damped-oscillator"] {
+        let scene = builtin::load(name).unwrap();
+        let system = &scene.system;
+        let spring = system.springs()[0];
+        assert!(spring.rest_length.abs() < f64::MIN_POSITIVE, "{name}");
+        let x = Vec3::new(0.3, -1.7, 0.4);
+        let force = spring.elastic_force(x, Vec3::zeros());
+        assert!((force + x * spring.stiffness).norm() < 1e-15, "{name}");
+        let omega = (spring.stiffness / system.masses()[1]).sqrt();
+        assert!((omega - 1.0).abs() < 1e-15, "{name}: ω = {omega}");
+    }
 }
 
 #[test]

@@ -23,6 +23,7 @@ pub(crate) struct RopeTable {
     bend: Option<Spanned<SpringsTable>>,
     mass: Option<Spanned<f64>>,
     density: Option<Spanned<f64>>,
+    rest_length_fraction: Option<Spanned<f64>>,
     #[serde(default)]
     pins: Vec<Spanned<PinRef>>,
     #[serde(default)]
@@ -54,6 +55,18 @@ pub(crate) fn rope(src: &Source<'_>, t: RopeTable, at: &At) -> Result<Built, Sce
     }
     if let Some(s) = family(src, t.bend.as_ref(), &at.key, "bend")? {
         rope = rope.bend(s);
+    }
+    if let Some(fraction) = &t.rest_length_fraction {
+        let value = *fraction.get_ref();
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(src.invalid(
+                fraction.span(),
+                key(&at.key, "rest_length_fraction"),
+                value.to_string(),
+                "a finite, non-negative number",
+            ));
+        }
+        rope = rope.rest_length_fraction(value);
     }
     if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m")? {
         rope = rope.mass(m);

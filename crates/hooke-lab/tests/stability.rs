@@ -1,0 +1,230 @@
+//! Stability maps of the `oscillator` scene against theory.
+//!
+//! The scene is one bob (m = 1 kg) on a zero-length spring (k = 1 N/m,
+//! ω = 1 rad/s at stiffness scale 1), released at rest 1 m above its
+//! equilibrium under gravity g = 2 m/s². Every method here is linear on
+//! this problem, so each step multiplies the deviation from equilibrium,
+//! written `w = (u − u_eq) + i v/ω`, by a complex amplification factor
+//! `R(iθ)` with `θ = hω` (for the Runge–Kutta methods `R` is the Taylor
+//! polynomial of `e^(iθ)` of their order). That gives an independent
+//! computation of every energy ratio the sweep measures.
+
+use std::sync::OnceLock;
+
+use hooke_lab::{Method, OscillatorStability, StabilityOptions, StabilityReport, stability};
+use hooke_scenes::{ExplicitMethod, builtin};
+
+/// The default sweep, with 0.1 s of simulated time per cell (and the
+/// default 1000 steps at least), without Dormand–Prince: at stiffness
+/// scale 10⁹ its error control takes thousands of substeps per step, which
+/// makes it by far the slowest method of the sweep, and it has no step
+/// limit to check.
+fn sweep() -> &'static StabilityReport {
+    static REPORT: OnceLock<StabilityReport> = OnceLock::new();
+    REPORT.get_or_init(|| {
+        let scene = builtin::load("oscillator").unwrap();
+        let mut options = StabilityOptions::for_scene(&scene);
+        options.duration = 0.1;
+        options.methods.retain(|&m| m != Method::DormandPrince);
+        stability(&scene, &options, &|_, _| {}).unwrap()
+    })
+}
+
+/// The largest energy ratio of the exact discrete motion of a one-step
+/// method with amplification `r = R(−iθ)` over `steps` steps, stopping at
+/// the first ratio above `bound` as the sweep does.
+///
+/// At stiffness scale `s` the spring has k = s (m = 1, g = 2); the bob
+/// starts at rest with the spring stretched by 1 m, and its equilibrium is
+/// at a drop `d* = 2/s − 1` below the start. For a drop `d`,
+/// `E = ½v² + ½k(1 + d)²`, `E(0) = ½k` and `W = 2d`.
+fn expected_ratio(r: (f64, f64), scale: f64, steps: usize, bound: f64) -> f64 {
+    let (k, omega) = (scale, scale.sqrt());
+    let equilibrium = 2.0 / k - 1.0;
+    // w = (d − d*) + i v/ω.
+    let (mut re, mut im) = (-equilibrium, 0.0_f64);
+    let (mut max_work, mut max_ratio) = (0.0_f64, 0.0_f64);
+    for _ in 0..steps {
+        (re, im) = (re * r.0 - im * r.1, re * r.1 + im * r.0);
+        let (drop, v) = (equilibrium + re, omega * im);
+        let energy = 0.5 * v * v + 0.5 * k * (1.0 + drop) * (1.0 + drop);
+        max_work = max_work.max(2.0 * drop);
+        let ratio = energy / (0.5 * k + max_work);
+        max_ratio = max_ratio.max(ratio);
+        if ratio > bound {
+            break;
+        }
+    }
+    max_ratio
+}
+
+/// `R(−iθ)` of the Runge–Kutta methods of order `p`: `Σ_{k≤p} (−iθ)^k/k!`
+/// (the deviation obeys `w' = −iω w`).
+fn taylor(theta: f64, order: u32) -> (f64, f64) {
+    let (mut re, mut im) = (0.0, 0.0);
+    let (mut term_re, mut term_im) = (1.0_f64, 0.0_f64);
+    for k in 0..=order {
+        re += term_re;
+        im += term_im;
+        // term *= −iθ/(k+1)
+        let scale = theta / f64::from(k + 1);
+        (term_re, term_im) = (term_im * scale, -term_re * scale);
+    }
+    (re, im)
+}
+
+#[test]
+fn omega_max_of_the_oscillator_is_one() {
+    let report = sweep();
+    assert!(
+        (report.omega_max - 1.0).abs() < 1e-12,
+        "{}",
+        report.omega_max
+    );
+    for cell in &report.cells {
+        let expected = cell.dt * cell.stiffness_scale.sqrt();
+        assert!((cell.h_omega - expected).abs() <= 1e-12 * expected);
+    }
+}
+
+#[test]
+fn the_implicit_methods_are_stable_in_every_cell() {
+    let report = sweep();
+    for method in [Method::BackwardEuler, Method::Bdf2] {
+        let cells: Vec<_> = report
+            .cells
+            .iter()
+            .filter(|c| c.integrator == method.name())
+            .collect();
+        assert_eq!(cells.len(), 19 * 13);
+        for cell in cells {
+            assert!(cell.stable, "{method}: {cell:?}");
+            assert!(cell.max_energy_ratio <= 1.0 + 1e-9, "{method}: {cell:?}");
+        }
+    }
+}
+
+#[test]
+fn euler_midpoint_and_heun_gain_energy_as_their_amplification_factors_say() {
+    let report = sweep();
+    let bound = report.energy_bound;
+    for (method, order) in [
+        (ExplicitMethod::ExplicitEuler, 1),
+        (ExplicitMethod::Midpoint, 2),
+        (ExplicitMethod::Heun, 2),
+    ] {
+        let name = Method::Explicit(method).name();
+        let mut dts_with_gain = std::collections::BTreeSet::new();
+        for cell in report.cells.iter().filter(|c| c.integrator == name) {
+            let theta = cell.h_omega;
+            let planned = ((0.1 / cell.dt).ceil() as usize).max(1000);
+            let expected =
+                expected_ratio(taylor(theta, order), cell.stiffness_scale, planned, bound);
+            if expected.is_finite() && expected - 1.0 > 1e-9 && expected <= bound {
+                assert!(cell.max_energy_ratio > 1.0, "{name}: {cell:?}");
+                assert!(
+                    (cell.max_energy_ratio - expected).abs() <= 1e-6 * expected,
+                    "{name}: measured {} against {expected} at θ = {theta}",
+                    cell.max_energy_ratio
+                );
+                assert!(cell.stable);
+                dts_with_gain.insert(cell.dt.to_bits());
+            }
+            if expected > bound {
+                assert!(!cell.stable, "{name}: {cell:?} (expected ratio {expected})");
+                assert!(cell.max_energy_ratio > bound, "{name}: {cell:?}");
+                dts_with_gain.insert(cell.dt.to_bits());
+            }
+        }
+        // Every step size of the sweep shows the gain at some stiffness
+        // (where theory says it exceeds rounding).
+        assert_eq!(dts_with_gain.len(), 13, "{name}");
+    }
+}
+
+#[test]
+fn the_bounded_methods_are_stable_below_their_limit_and_not_above_it() {
+    let report = sweep();
+    for method in Method::ALL {
+        let OscillatorStability::BoundedUpTo(limit) = method.oscillator_stability() else {
+            continue;
+        };
+        let cells: Vec<_> = report
+            .cells
+            .iter()
+            .filter(|c| c.integrator == method.name())
+            .collect();
+        let (mut below, mut above) = (0, 0);
+        for cell in cells {
+            if cell.h_omega < 0.98 * limit {
+                assert!(cell.stable, "{method}: {cell:?}");
+                below += 1;
+            } else if cell.h_omega > 1.02 * limit {
+                assert!(!cell.stable, "{method}: {cell:?}");
+                above += 1;
+            }
+        }
+        assert!(
+            below > 50 && above > 20,
+            "{method}: {below} below, {above} above"
+        );
+    }
+}
+
+#[test]
+fn rk4_matches_its_amplification_factor_in_every_stable_cell() {
+    let report = sweep();
+    let bound = report.energy_bound;
+    for cell in report
+        .cells
+        .iter()
+        .filter(|c| c.integrator == "rk4" && c.stable)
+    {
+        let planned = ((0.1 / cell.dt).ceil() as usize).max(1000);
+        let expected = expected_ratio(
+            taylor(cell.h_omega, 4),
+            cell.stiffness_scale,
+            planned,
+            bound,
+        );
+        assert!(
+            (cell.max_energy_ratio - expected).abs() <= 1e-6 * expected.max(1.0),
+            "measured {} against {expected}: {cell:?}",
+            cell.max_energy_ratio
+        );
+    }
+}
+
+#[test]
+fn limit_search_finds_two_and_two_root_two() {
+    let scene = builtin::load("oscillator").unwrap();
+    let mut options = StabilityOptions::for_scene(&scene);
+    options.scales = vec![1.0];
+    options.dts = vec![1e-3, 10.0];
+    options.limit_scale = Some(1.0);
+    let report = stability(&scene, &options, &|_, _| {}).unwrap();
+    let limits = report.limits.unwrap();
+    assert_eq!(limits.len(), Method::ALL.len());
+    for (method, limit) in Method::ALL.into_iter().zip(&limits) {
+        assert_eq!(limit.integrator, method.name());
+        match method.oscillator_stability() {
+            OscillatorStability::BoundedUpTo(theory) => {
+                let found = limit.h_omega_limit.unwrap();
+                assert!(
+                    (found / theory - 1.0).abs() < 0.02,
+                    "{method}: h·ω limit {found}, theory {theory}"
+                );
+            }
+            OscillatorStability::Unconditional => {
+                assert_eq!(limit.max_stable_dt, None, "{method}");
+                assert!((limit.searched_up_to - 10.0).abs() < 1e-12, "{method}");
+            }
+            OscillatorStability::GainsEnergy => {
+                // A finite run stays under the bound while the energy has
+                // not grown tenfold: well below any bounded method's limit.
+                let found = limit.h_omega_limit.unwrap();
+                assert!(found < 1.2, "{method}: {found}");
+            }
+        }
+    }
+}
