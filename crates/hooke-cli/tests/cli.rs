@@ -78,7 +78,8 @@ fn scenes_lists_the_built_in_scenes() {
     for name in [
         "stiff-cloth",
         "oscillator",
-        "hanging-chain",
+        "chain",
+        "damped-oscillator",
         "cloth-on-sphere",
         "jelly-cube",
     ] {

@@ -23,18 +23,18 @@ const SCENES: [(&str, &str, &str); 10] = [
     ),
     (
         "oscillator",
-        "one particle on a spring to a pinned anchor, ω = 1 rad/s, no gravity",
+        "one particle on a linear spring to a pinned anchor, ω = 1 rad/s, released above its equilibrium (closed-form solution)",
         include_str!("../../../scenes/oscillator.toml"),
     ),
     (
         "damped-oscillator",
-        "the oscillator with a damped spring, ζ = 0.1",
+        "the oscillator with a damped spring, ζ = 0.1 (closed-form solution)",
         include_str!("../../../scenes/damped-oscillator.toml"),
     ),
     (
-        "hanging-chain",
-        "a chain pinned at both ends sagging under gravity",
-        include_str!("../../../scenes/hanging-chain.toml"),
+        "chain",
+        "a hanging chain: pinned at both ends, sagging under gravity",
+        include_str!("../../../scenes/chain.toml"),
     ),
     (
         "cloth-on-sphere",
