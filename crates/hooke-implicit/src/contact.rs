@@ -5,9 +5,9 @@
 //! prescribed, `zᵢ = pᵢ'(t + h) − vᵢ`, so it ends the step at its path's
 //! velocity.
 //!
-//! At the start of a step of `h` s, a free particle that would reach an
-//! obstacle within the step at its present velocity — `φ + h min(v_n, 0) ≤
-//! margin`, with `φ` the signed distance, `n` the normal and
+//! At the start of a step of `h` s, a free particle that would be within
+//! `margin` of an obstacle at the step's end at its present velocity —
+//! `φ + h v_n ≤ margin`, with `φ` the signed distance, `n` the normal and
 //! `v_n = (vᵢ − u)·n` its normal velocity relative to the obstacle's `u` —
 //! is constrained along `n`: its filter becomes `Sᵢ = I − n nᵀ` and its
 //! velocity change in that direction is prescribed,
@@ -16,33 +16,87 @@
 //! ```text
 //! w = −φ/h       arriving (φ > margin): it lands on the surface at the step's end;
 //! w = e·|v_n|    at the surface after landing, or touching it first: the rebound;
-//! w = 0          resting on it, or pressed into it by its own body.
+//! w = 0          resting on it, sliding over it, or pressed into it by its own body.
 //! ```
 //!
 //! So a contact never leaves a particle inside an obstacle (pushing it out
-//! afterwards would store energy in its springs), and the particle slides
-//! freely in the tangent plane. The step solves for `Δv = y + z` with `S y = y` from
-//! `S A y = S (b − A z)`. The constraint's normal impulse is then
+//! afterwards would store energy in its springs). A particle sliding over a
+//! curved obstacle ends each step slightly outside it, moving away; it stays
+//! constrained while it stays within the margin (rather than taking a free
+//! step into the obstacle and being pushed out, which pumped a resting cloth
+//! into a two-step cycle). The step solves for `Δv = y + z` with `S y = y`
+//! from `S A y = S (b − A z)`. The constraint's normal impulse is then
 //! `λᵢ = n·(A Δv − b)ᵢ`. Negative, the constraint holds the particle down:
 //! it is released, for the step's remaining Newton iterations and the next
-//! step. Positive, the obstacle pushes, and after the last iteration Coulomb
-//! friction takes up to `μ λᵢ / mᵢ` of the particle's tangential relative
-//! speed. Leftover penetration (a particle that arrived during the step) is
+//! step. Leftover penetration (a particle that arrived during the step) is
 //! resolved afterwards by `System::resolve_contacts`.
+//!
+//! # Friction
+//!
+//! Coulomb friction is part of every solve. With the tangential relative
+//! velocity `v_t = (I − n nᵀ)(vᵢ − u)`, a constrained particle on an
+//! obstacle of friction coefficient `μ` receives the friction impulse
+//!
+//! ```text
+//! F(v) = −μλ f₁(|v_t|) v_t/|v_t|,     f₁(s) = min(s/ε, 1),
+//! ```
+//!
+//! Coulomb's law with sticking smoothed into viscous damping below the
+//! speed `ε` = 10⁻⁵ m/s (Li et al., *Incremental Potential Contact*,
+//! SIGGRAPH 2020, §5): a particle whose tangential load stays below `μλ`
+//! creeps at most at `ε`, and one that slides is braked by `μλ` per step.
+//! `F` is minus the gradient of the dissipation potential
+//!
+//! ```text
+//! D(v) = μλ f₀(|v_t|),    f₀(s) = s²/2ε (s < ε),  s − ε/2 (s ≥ ε),
+//! ```
+//!
+//! convex in `v`, which joins the step's incremental potential. The normal
+//! impulse `λ` is lagged: that of the solve before (the previous step's
+//! last solve's for a step's first solve, zero for a particle that was not
+//! constrained then). Each solve linearises the friction at its
+//! linearisation point `V` as the damping `c = μλ f₁(s)/s`, `s = |v_t(V)|`:
+//! in the particle's row
+//!
+//! ```text
+//! (A + c I) Δ = b − c v_t(V),
+//! ```
+//!
+//! so the friction impulse after the solve is `−c v_t(V + Δ)` and acts on
+//! the springs within the solve. Below `ε` that is `D`'s exact Hessian;
+//! above it, the quadratic that touches `D` at `V` and lies above it, so a
+//! Newton step stays a descent direction of `Φ + D` and the line search
+//! applies unchanged, and iterating it converges to Coulomb's law. The
+//! `c I` term is added to the particle's mass term and diagonal block after
+//! `b − A z` is formed; its normal part is filtered out, so it changes
+//! neither the solution's normal component nor `λ`.
 
 use hooke_core::{System, Vec3};
 
 use crate::filter::Filter;
 use crate::matrix::BlockMatrix;
+use crate::solver::Topology;
 
-/// Relative normal speed below which a particle counts as resting, m/s.
-const RESTING: f64 = 1e-9;
+/// Tangential relative speed below which friction acts as viscous damping
+/// (the particle sticks, creeping at most this fast), m/s.
+const STICKING: f64 = 1e-5;
 
 /// One constrained particle.
 #[derive(Debug, Clone, Copy)]
 struct Active {
-    obstacle: usize,
     normal: Vec3,
+    /// The obstacle's velocity `u` during the step.
+    velocity: Vec3,
+    /// The obstacle's friction coefficient `μ`.
+    friction: f64,
+}
+
+impl Active {
+    /// The tangential part `v_t` of the relative velocity `v − u`.
+    fn tangential(&self, v: Vec3) -> Vec3 {
+        let relative = v - self.velocity;
+        relative - relative.dot(&self.normal) * self.normal
+    }
 }
 
 /// Which particles are constrained by obstacles, across steps.
@@ -54,10 +108,16 @@ pub(crate) struct Contacts {
     /// Particles that landed on an obstacle in the last step: the normal
     /// speed they hit it with, for their rebound.
     impact: Vec<f64>,
+    /// The normal impulse `λ` of each constrained particle's constraint in
+    /// the last solve; zero for the others.
+    impulse: Vec<f64>,
+    /// The friction bound `μλ` each particle's friction term was built with
+    /// for the present solve; zero for particles without friction.
+    bound: Vec<f64>,
     /// The prescribed velocity changes `z`.
     pub(crate) prescribed: Vec<Vec3>,
     /// Scratch for `A z` before the solve and `A y` after it.
-    pub(crate) product: Vec<Vec3>,
+    product: Vec<Vec3>,
 }
 
 impl Contacts {
@@ -83,6 +143,8 @@ impl Contacts {
         self.active.resize(n, None);
         self.released.resize(n, false);
         self.impact.resize(n, 0.0);
+        self.impulse.resize(n, 0.0);
+        self.bound.resize(n, 0.0);
         self.prescribed.resize(n, Vec3::zeros());
         self.product.resize(n, Vec3::zeros());
         let mut any = false;
@@ -92,7 +154,9 @@ impl Contacts {
             }
             filters[i] = Filter::Free;
             self.prescribed[i] = Vec3::zeros();
-            let was_free = self.active[i].take().is_none() && !touching[i];
+            let was_active = self.active[i].take().is_some();
+            let was_free = !was_active && !touching[i];
+            let impulse = std::mem::take(&mut self.impulse[i]);
             let impact = std::mem::take(&mut self.impact[i]);
             if std::mem::take(&mut self.released[i]) {
                 continue;
@@ -106,9 +170,7 @@ impl Contacts {
                     let (phi, normal) = o.distance(x[i], time);
                     (k, phi, normal, (v[i] - o.velocity(time)).dot(&normal))
                 })
-                .filter(|&(_, phi, _, approach)| {
-                    approach <= RESTING && phi + h * approach.min(0.0) <= margin
-                })
+                .filter(|&(_, phi, _, approach)| phi + h * approach <= margin)
                 .min_by(|a, b| (a.1 + h * a.3).total_cmp(&(b.1 + h * b.3)));
             let Some((k, phi, normal, approach)) = reached else {
                 continue;
@@ -128,9 +190,13 @@ impl Contacts {
             self.prescribed[i] = (target - v[i].dot(&normal)) * normal;
             filters[i] = Filter::Plane(normal);
             self.active[i] = Some(Active {
-                obstacle: k,
                 normal,
+                velocity: obstacle.velocity(time),
+                friction: obstacle.friction,
             });
+            if was_active {
+                self.impulse[i] = impulse;
+            }
             any = true;
         }
         for (i, path) in system.pin_paths() {
@@ -140,10 +206,64 @@ impl Contacts {
         any
     }
 
+    /// Makes the solve's unknown the free part `y` of `Δv = y + z`: `b ← b −
+    /// A z`.
+    pub(crate) fn prescribe(&mut self, a: &BlockMatrix, b: &mut [Vec3]) {
+        a.apply(&self.prescribed, &mut self.product);
+        for (bi, azi) in b.iter_mut().zip(&self.product) {
+            *bi -= azi;
+        }
+    }
+
+    /// Adds the linearised friction of the constrained particles at the
+    /// velocities `v` to the system last assembled, `A ← A + c I` and `b ←
+    /// b − c v_t` in each one's row, with `c = μλ f₁(|v_t|)/|v_t|` and `λ` the
+    /// last solve's normal impulse; see the module docs.
+    pub(crate) fn add_friction(&mut self, topology: &mut Topology, v: &[Vec3], b: &mut [Vec3]) {
+        for (i, active) in self.active.iter().enumerate() {
+            self.bound[i] = 0.0;
+            let Some(active) = active else {
+                continue;
+            };
+            let bound = active.friction * self.impulse[i];
+            if bound > 0.0 {
+                let tangential = active.tangential(v[i]);
+                let c = bound / tangential.norm().max(STICKING);
+                topology.add_to_diagonal(i, c);
+                b[i] -= c * tangential;
+                self.bound[i] = bound;
+            }
+        }
+    }
+
+    /// The friction's dissipation potential `D(v) = Σ μλ f₀(|v_t|)` at the
+    /// velocities `v`, with the bounds `μλ` of the last friction terms
+    /// added: the term of the step's incremental potential whose gradient
+    /// is the friction impulse.
+    pub(crate) fn dissipation(&self, v: &[Vec3]) -> f64 {
+        self.active
+            .iter()
+            .zip(&self.bound)
+            .zip(v)
+            .filter_map(|((active, &bound), &v)| {
+                let speed = active.as_ref()?.tangential(v).norm();
+                Some(
+                    bound
+                        * if speed < STICKING {
+                            0.5 * speed * speed / STICKING
+                        } else {
+                            speed - 0.5 * STICKING
+                        },
+                )
+            })
+            .sum()
+    }
+
     /// After a solve of a step, `S A x = S b` (the first with `x = y` and
-    /// `b = b − A z`, a Newton iteration with its correction): frees the
-    /// particles whose constraint pulls them towards the obstacle
-    /// (`λ = n·(A x − b) < 0`) for the rest of this step (further Newton
+    /// `b = b − A z`, a Newton iteration with its correction): records the
+    /// constraints' normal impulses `λ = n·(A x − b)` for the next solve's
+    /// friction, and frees the particles whose constraint pulls them towards
+    /// the obstacle (`λ < 0`) for the rest of this step (further Newton
     /// iterations let them go) and the next.
     pub(crate) fn release(
         &mut self,
@@ -154,42 +274,15 @@ impl Contacts {
     ) {
         a.apply(y, &mut self.product);
         for (i, active) in self.active.iter_mut().enumerate() {
-            if let Some(Active { normal, .. }) = *active
-                && normal.dot(&(self.product[i] - b[i])) < 0.0
-            {
+            let Some(Active { normal, .. }) = *active else {
+                continue;
+            };
+            let impulse = normal.dot(&(self.product[i] - b[i]));
+            self.impulse[i] = impulse.max(0.0);
+            if impulse < 0.0 {
                 *active = None;
                 filters[i] = Filter::Free;
                 self.released[i] = true;
-            }
-        }
-    }
-
-    /// After the last solve of a step, `S A x = S b`: Coulomb friction on
-    /// the new velocities `v` of the constrained particles, with the normal
-    /// impulses `λ = n·(A x − b)` of that solve.
-    pub(crate) fn friction(
-        &mut self,
-        system: &System,
-        a: &BlockMatrix,
-        x: &[Vec3],
-        b: &[Vec3],
-        time: f64,
-        v: &mut [Vec3],
-    ) {
-        a.apply(x, &mut self.product);
-        let masses = system.masses();
-        for (i, active) in self.active.iter().enumerate() {
-            let Some(Active { obstacle, normal }) = *active else {
-                continue;
-            };
-            let impulse = normal.dot(&(self.product[i] - b[i])).max(0.0);
-            let obstacle = &system.obstacles()[obstacle];
-            let relative = v[i] - obstacle.velocity(time);
-            let tangential = relative - relative.dot(&normal) * normal;
-            let speed = tangential.norm();
-            if speed > 0.0 {
-                let kept = (1.0 - obstacle.friction * impulse / (masses[i] * speed)).max(0.0);
-                v[i] -= (1.0 - kept) * tangential;
             }
         }
     }

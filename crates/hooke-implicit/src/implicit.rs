@@ -322,18 +322,12 @@ impl Integrator for Implicit {
                 self.contact_margin,
                 topology.matrix_and_filters_mut().1,
             );
-        let prescribed =
-            constrained.then_some((&contacts.prescribed[..], &mut contacts.product[..]));
-        solve.linearised(
-            &mut self.assembler,
-            topology,
-            &lin,
-            &mut w.b,
-            &mut w.dv,
-            &mut w.pcg,
-            prescribed,
-            &mut report,
-        )?;
+        solve.assemble(&mut self.assembler, topology, &lin, &mut w.b)?;
+        if constrained {
+            contacts.prescribe(topology.matrix(), &mut w.b);
+            contacts.add_friction(topology, v0, &mut w.b);
+        }
+        solve.solve(topology, &w.b, &mut w.dv, &mut w.pcg, &mut report)?;
         if constrained {
             for_each_row(&mut w.v, |i, v| {
                 *v = v0[i] + w.dv[i] + contacts.prescribed[i]
@@ -343,7 +337,6 @@ impl Integrator for Implicit {
         } else {
             for_each_row(&mut w.v, |i, v| *v = v0[i] + w.dv[i]);
         }
-        let mut newton_solved = false;
 
         for _ in 1..self.newton_iterations {
             for_each_row2(&mut w.x, &mut w.inertia, |i, x, inertia| {
@@ -360,17 +353,11 @@ impl Integrator for Implicit {
                 freeze_directions: false,
             };
             w.delta.fill(Vec3::zeros());
-            solve.linearised(
-                &mut self.assembler,
-                topology,
-                &lin,
-                &mut w.b,
-                &mut w.delta,
-                &mut w.pcg,
-                None,
-                &mut report,
-            )?;
-            newton_solved = true;
+            solve.assemble(&mut self.assembler, topology, &lin, &mut w.b)?;
+            if constrained {
+                self.contacts.add_friction(topology, &w.v, &mut w.b);
+            }
+            solve.solve(topology, &w.b, &mut w.delta, &mut w.pcg, &mut report)?;
             if constrained {
                 let (matrix, filters) = topology.matrix_and_filters_mut();
                 self.contacts.release(matrix, &w.delta, &w.b, filters);
@@ -391,7 +378,11 @@ impl Integrator for Implicit {
                 &w.v,
                 &w.v_tilde,
                 beta_h,
-            );
+            ) + if constrained {
+                self.contacts.dissipation(&w.v)
+            } else {
+                0.0
+            };
             let mut alpha = 1.0;
             let accepted = loop {
                 for_each_row(&mut w.trial, |i, t| *t = w.v[i] + alpha * w.delta[i]);
@@ -403,7 +394,11 @@ impl Integrator for Implicit {
                     &w.trial,
                     &w.v_tilde,
                     beta_h,
-                );
+                ) + if constrained {
+                    self.contacts.dissipation(&w.trial)
+                } else {
+                    0.0
+                };
                 if value <= start + 1e-4 * alpha * slope {
                     break true;
                 }
@@ -418,11 +413,6 @@ impl Integrator for Implicit {
             std::mem::swap(&mut w.v, &mut w.trial);
         }
         report.newton_iterations = report.linear_solves;
-        if constrained {
-            let last = if newton_solved { &w.delta } else { &w.dv };
-            let contacts = &mut self.contacts;
-            contacts.friction(system, topology.matrix(), last, &w.b, time, &mut w.v);
-        }
 
         for i in 0..n {
             w.x[i] = w.x_tilde[i] + beta_h * w.v[i];

@@ -48,9 +48,19 @@
 //! held along the normal so that it lands on the surface (never inside it),
 //! then rebounds with the obstacle's restitution, rests, or — when the
 //! constraint's normal impulse `λ = n·(A Δv − b)` turns negative, i.e. the
-//! constraint would hold it down — is released at once. The impulse also
-//! sets the Coulomb friction applied after the last Newton iteration.
-//! Particles within [`Implicit::with_contact_margin`] of an obstacle count
+//! constraint would hold it down — is released at once. Coulomb friction is
+//! part of the solve too: a constrained particle with tangential relative
+//! velocity `v_t` adds the damping `c = μλ / max(|v_t|, ε)` to its row,
+//! `(A + c I) Δv = b − c v_t`, with `λ` the normal impulse of the solve
+//! before and `ε` = 10⁻⁵ m/s. That is Coulomb's law with sticking smoothed
+//! into viscous creep slower than `ε`, linearised so that each Newton
+//! iteration sees the friction the springs work against, and the gradient
+//! of a convex dissipation potential that the line search includes (the
+//! `contact` module docs give the equations). Friction applied after the
+//! solve instead stops particles that the solve let slide, and their
+//! neighbours' springs stay stretched: on the default scene with friction
+//! 0.3 that stored up to 2 200 J in a 2.35 J scene; inside the solve the
+//! energy never rises above its start. Particles within [`Implicit::with_contact_margin`] of an obstacle count
 //! as touching it.
 //!
 //! # Storage

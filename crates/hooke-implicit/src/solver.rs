@@ -4,6 +4,7 @@
 use hooke_core::{StepError, StepReport, System, Vec3};
 
 use crate::assembly::{Assembler, Linearization};
+use crate::block::SymBlock;
 use crate::cg::{self, BlockJacobi, PcgError, PcgSettings, PcgWorkspace};
 use crate::cholesky::SparseCholesky;
 use crate::filter::Filter;
@@ -52,6 +53,19 @@ impl Topology {
     /// `Fixed` from the start).
     pub(crate) fn matrix_and_filters_mut(&mut self) -> (&BlockMatrix, &mut [Filter]) {
         (&self.matrix, &mut self.filters)
+    }
+
+    /// Adds `c I` to the diagonal block of particle `i` of the matrix last
+    /// assembled (to its mass term `m̃ᵢ`, which the product reads, to the
+    /// block the Cholesky factorization reads, and to the block-Jacobi
+    /// inverse); `c ≥ 0` keeps a positive-definite block so.
+    pub(crate) fn add_to_diagonal(&mut self, i: usize, c: f64) {
+        self.matrix.mass[i] += c;
+        let block = &mut self.matrix.diagonal[i];
+        block.add_assign(&SymBlock::scaled_identity(c));
+        if let Some(inverse) = block.inverse_if_positive_definite() {
+            self.jacobi.inverses[i] = inverse;
+        }
     }
 }
 
@@ -102,28 +116,42 @@ pub(crate) struct Solve<'a> {
 }
 
 impl Solve<'_> {
-    /// Assembles the linearisation `lin` into the topology's matrix and `b`,
-    /// then solves into `x` (a warm start on entry), recording both in
-    /// `report`. With `prescribed = Some((z, scratch))` the constrained
-    /// components of the solution are `z` rather than zero: `b` becomes
-    /// `b − A z` and `x` the free part `y` of `Δv = y + z`.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn linearised(
+    /// Assembles the linearisation `lin` into the topology's matrix and `b`.
+    ///
+    /// # Errors
+    /// As [`Assembler::assemble`].
+    pub(crate) fn assemble(
         self,
         assembler: &mut Assembler,
         topology: &mut Topology,
         lin: &Linearization<'_>,
         b: &mut [Vec3],
+    ) -> Result<(), StepError> {
+        let Topology { matrix, jacobi, .. } = topology;
+        assembler.assemble(self.system, lin, matrix, jacobi, b, self.time)
+    }
+
+    /// Solves the filtered system `S A x = S b` last assembled (and amended)
+    /// into `x` (a warm start on entry), recording the solve and the force
+    /// evaluation of its assembly in `report`.
+    ///
+    /// # Errors
+    /// [`StepError::NoConvergence`] in strict mode when PCG stops at its
+    /// cap, [`StepError::NotPositiveDefinite`] when the filtered matrix is
+    /// not positive definite.
+    pub(crate) fn solve(
+        self,
+        topology: &mut Topology,
+        b: &[Vec3],
         x: &mut [Vec3],
         workspace: &mut PcgWorkspace,
-        prescribed: Option<(&[Vec3], &mut [Vec3])>,
         report: &mut StepReport,
     ) -> Result<(), StepError> {
         let Self {
-            system,
             solver,
             strict,
             time,
+            ..
         } = self;
         let Topology {
             matrix,
@@ -132,13 +160,6 @@ impl Solve<'_> {
             cholesky,
             ..
         } = topology;
-        assembler.assemble(system, lin, matrix, jacobi, b, time)?;
-        if let Some((z, az)) = prescribed {
-            matrix.apply(z, az);
-            for (bi, azi) in b.iter_mut().zip(az.iter()) {
-                *bi -= azi;
-            }
-        }
         report.force_evaluations += 1;
         report.linear_solves += 1;
         match solver {
