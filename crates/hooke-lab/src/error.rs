@@ -22,4 +22,14 @@ pub enum LabError {
     /// A method parameter out of range.
     #[error(transparent)]
     Parameter(#[from] ParameterError),
+    /// The numerical reference run failed.
+    #[error("the reference run ({method} at dt = {dt} s) failed: {reason}")]
+    Reference {
+        /// The reference's method.
+        method: &'static str,
+        /// Its step, s.
+        dt: f64,
+        /// Why it failed.
+        reason: String,
+    },
 }

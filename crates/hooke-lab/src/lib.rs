@@ -1,11 +1,12 @@
 //! Measurements of mass-spring integrators on a user's scene: which stay
-//! stable at which stiffness and timestep ([`stability`]), and what
-//! accuracy each buys per second of run time.
+//! stable at which stiffness and timestep ([`mod@stability`]), and what
+//! accuracy each buys per second of run time ([`mod@accuracy`]).
 //!
 //! Every measurement runs the scene's [`System`](hooke_core::System) with
 //! the integrators of `hooke-explicit` and `hooke-implicit`
 //! ([`Method::ALL`]) through [`trial::run`], which times the steps alone.
 
+pub mod accuracy;
 mod error;
 mod method;
 mod range;
@@ -13,6 +14,7 @@ mod spectrum;
 pub mod stability;
 pub mod trial;
 
+pub use accuracy::{AccuracyOptions, AccuracyReport, accuracy};
 pub use error::LabError;
 pub use method::{Method, OscillatorStability, Settings};
 pub use range::Range;

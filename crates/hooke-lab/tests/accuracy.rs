@@ -1,0 +1,138 @@
+//! The accuracy measurement checked against theory: orders of convergence
+//! on the damped oscillator, its closed form, and the numerical
+//! reference's error estimate.
+
+use hooke_core::Vec3;
+use hooke_lab::accuracy::{AxialOscillator, ReferenceChoice, ReferenceKind};
+use hooke_lab::trial::{Flow, run};
+use hooke_lab::{AccuracyOptions, LabError, Method, accuracy};
+use hooke_scenes::{ExplicitMethod, builtin};
+
+#[test]
+fn every_fixed_step_method_converges_at_its_expected_order_on_the_damped_oscillator() {
+    let scene = builtin::load("damped-oscillator").unwrap();
+    let mut options = AccuracyOptions::for_scene(&scene);
+    options.methods.retain(|m| m.is_fixed_step());
+    options.repeat = 1;
+    let report = accuracy(&scene, &options, &|_, _| {}).unwrap();
+    assert_eq!(report.reference.kind, ReferenceKind::Analytic);
+    assert_eq!(report.orders.len(), 12);
+    for order in &report.orders {
+        let observed = order.observed_order.unwrap_or(f64::NAN);
+        assert!(
+            (observed - order.expected_order).abs() <= 0.15,
+            "{}: observed {observed}, expected {} (steps {:?})",
+            order.integrator,
+            order.expected_order,
+            order.steps_fitted
+        );
+        assert!(order.steps_fitted.len() >= 3);
+    }
+    assert_eq!(report.runs.len(), 12 * options.dts.len());
+}
+
+#[test]
+fn the_closed_form_is_the_scene_files_motion_and_solves_the_equation() {
+    // The scene's own comment: m = k = 1, c = 0.2, g = 1 along the rope,
+    // y(t) = −2 + e^(−ζt)(cos ω_d t + ζ/√(1−ζ²) sin ω_d t), ζ = 0.1.
+    let scene = builtin::load("damped-oscillator").unwrap();
+    let closed = AxialOscillator::of(&scene.system).unwrap();
+    let zeta: f64 = 0.1;
+    let wd = (1.0 - zeta * zeta).sqrt();
+    let y = |t: f64| closed.bob_position(t).y;
+    for k in 0..=60 {
+        let t = 0.5 * f64::from(k);
+        let expected = -2.0 + (-zeta * t).exp() * ((wd * t).cos() + zeta / wd * (wd * t).sin());
+        assert!((y(t) - expected).abs() < 1e-12, "t = {t}");
+        let p = closed.bob_position(t);
+        assert!(p.x.abs() < 1e-15 && p.z.abs() < 1e-15);
+        // m l'' = −k (l − L) − c l' + m g along the rope, with l = −y.
+        if t > 0.0 {
+            let h = 1e-4;
+            let l = |t: f64| -y(t);
+            let rate = (l(t + h) - l(t - h)) / (2.0 * h);
+            let accel = (l(t + h) - 2.0 * l(t) + l(t - h)) / (h * h);
+            let residual = accel - (-(l(t) - 1.0) - 0.2 * rate + 1.0);
+            assert!(residual.abs() < 1e-5, "t = {t}: residual {residual}");
+        }
+    }
+    assert!(AxialOscillator::of(&builtin::load("stiff-cloth").unwrap().system).is_none());
+}
+
+#[test]
+fn the_richardson_estimate_is_within_a_factor_two_of_the_references_true_error() {
+    let scene = builtin::load("damped-oscillator").unwrap();
+    let mut options = AccuracyOptions::for_scene(&scene);
+    options.methods = vec![Method::Explicit(ExplicitMethod::VelocityVerlet)];
+    options.dts = vec![0.01];
+    options.repeat = 1;
+    options.reference = ReferenceChoice::Numerical;
+    options.reference_dt = Some(0.05);
+    let report = accuracy(&scene, &options, &|_, _| {}).unwrap();
+    let reference = &report.reference;
+    assert_eq!(reference.kind, ReferenceKind::Numerical);
+    assert_eq!(reference.method, "rk4");
+    let h = reference.dt.unwrap();
+    assert!(h <= 0.05 && h > 0.045);
+    let observed = reference.observed_order.unwrap();
+    assert!((observed - 4.0).abs() <= 0.15, "reference order {observed}");
+    assert!(reference.converged);
+
+    // The reference run's true error, against the closed form, at the
+    // same checkpoints.
+    let closed = AxialOscillator::of(&scene.system).unwrap();
+    let interval = options.duration / options.frames as f64;
+    let per_frame = (interval / h).round() as usize;
+    let mut integrator = Method::Explicit(ExplicitMethod::Rk4)
+        .build(&options.settings, None)
+        .unwrap();
+    let mut true_error = 0.0_f64;
+    let outcome = run(
+        &scene.system,
+        &mut integrator,
+        h,
+        per_frame * options.frames,
+        |n, state| {
+            if n % per_frame == 0 {
+                let t = interval * (n / per_frame) as f64;
+                let bob: Vec3 = state.positions()[closed.bob];
+                true_error = true_error.max((bob - closed.bob_position(t)).norm());
+            }
+            Flow::Continue
+        },
+    );
+    assert!(outcome.failure.is_none());
+    let ratio = reference.estimated_error / true_error;
+    assert!(
+        (0.5..=2.0).contains(&ratio),
+        "estimate {} against true error {true_error}",
+        reference.estimated_error
+    );
+}
+
+#[test]
+fn bad_options_are_errors_naming_the_option() {
+    let scene = builtin::load("damped-oscillator").unwrap();
+    let base = AccuracyOptions::for_scene(&scene);
+    let cases: [(&str, Box<dyn Fn(&mut AccuracyOptions)>); 7] = [
+        ("frames", Box::new(|o| o.frames = 0)),
+        ("repeat", Box::new(|o| o.repeat = 0)),
+        ("dt", Box::new(|o| o.dts[3] = -1e-3)),
+        ("tolerances", Box::new(|o| o.tolerances.clear())),
+        ("tolerance", Box::new(|o| o.tolerances[0] = f64::NAN)),
+        ("duration", Box::new(|o| o.duration = f64::INFINITY)),
+        ("reference dt", Box::new(|o| o.reference_dt = Some(0.0))),
+    ];
+    for (option, spoil) in cases {
+        let mut options = base.clone();
+        spoil(&mut options);
+        match accuracy(&scene, &options, &|_, _| {}) {
+            Err(LabError::Invalid { name, .. }) => assert_eq!(name, option),
+            other => panic!("{option}: {other:?}"),
+        }
+    }
+    let mut options = base;
+    options.methods.clear();
+    let error = accuracy(&scene, &options, &|_, _| {}).unwrap_err();
+    assert!(error.to_string().starts_with("methods"), "{error}");
+}
