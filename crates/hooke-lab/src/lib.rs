@@ -1,1 +1,3 @@
 //! Measurements of mass-spring integrators on a user's scene.
+
+pub mod plot;
