@@ -1,6 +1,7 @@
 //! Measurements of mass-spring integrators on a user's scene: which stay
 //! stable at which stiffness and timestep ([`mod@stability`]), and what
-//! accuracy each buys per second of run time ([`mod@accuracy`]).
+//! accuracy each buys per second of run time ([`mod@accuracy`]), with the
+//! figures of both ([`plot`]).
 //!
 //! Every measurement runs the scene's [`System`](hooke_core::System) with
 //! the integrators of `hooke-explicit` and `hooke-implicit`
@@ -9,6 +10,7 @@
 pub mod accuracy;
 mod error;
 mod method;
+pub mod plot;
 mod range;
 mod spectrum;
 pub mod stability;
