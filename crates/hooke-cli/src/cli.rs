@@ -12,6 +12,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::cli_error::CliError;
 use crate::describe::{describe, step_text};
+use crate::lab::{AccuracyArgs, StabilityArgs, accuracy_command, stability_command};
 use crate::runner::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, run};
 use crate::summary::Summary;
 
@@ -44,6 +45,13 @@ enum Command {
         /// The scene file (TOML).
         scene: PathBuf,
     },
+    /// Map which integrators stay stable at which stiffness and timestep;
+    /// write stability.json and stability.png.
+    Stability(Box<StabilityArgs>),
+    /// Measure each integrator's error against a reference, its observed
+    /// order and its run time; write accuracy.json, work_precision.png and
+    /// convergence.png.
+    Accuracy(Box<AccuracyArgs>),
 }
 
 #[derive(Debug, Args)]
@@ -113,6 +121,8 @@ where
         Some(Command::Run(args)) => run_command(&args, out),
         Some(Command::Scenes) => list_scenes(out),
         Some(Command::Check { scene }) => check(&scene, out),
+        Some(Command::Stability(args)) => stability_command(&args, out),
+        Some(Command::Accuracy(args)) => accuracy_command(&args, out),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

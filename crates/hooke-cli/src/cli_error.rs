@@ -44,6 +44,9 @@ pub enum CliError {
         /// What went wrong.
         source: std::io::Error,
     },
+    /// A figure could not be drawn or written.
+    #[error(transparent)]
+    Plot(Box<hooke_lab::plot::PlotError>),
     /// The command's own output could not be printed.
     #[error("cannot print: {0}")]
     Print(#[from] std::io::Error),

@@ -95,6 +95,7 @@ mod cli_error;
 mod describe;
 mod error;
 mod framing;
+mod lab;
 mod mesh;
 mod ply;
 mod render;

@@ -345,11 +345,15 @@ pub fn stability(
 /// Relative width at which the bisection stops.
 const LIMIT_PRECISION: f64 = 1e-4;
 
+/// The largest `h·ω_max` the limit search tries.
+pub const LIMIT_SEARCH_H_OMEGA: f64 = 1e3;
+
 /// Each method's largest stable step at stiffness `scale`: from the
 /// smallest of `options.dts` the step doubles until a run is unstable (or
-/// passes the largest of `options.dts`), then a geometric bisection
-/// narrows the bracket to a relative width of 10⁻⁴. The search assumes
-/// that stability is lost once, at one step; the methods run in parallel.
+/// passes both the largest of `options.dts` and `h·ω_max =`
+/// [`LIMIT_SEARCH_H_OMEGA`]), then a geometric bisection narrows the
+/// bracket to a relative width of 10⁻⁴. The search assumes that stability
+/// is lost once, at one step; the methods run in parallel.
 fn limits(
     scene: &Scene,
     options: &StabilityOptions,
@@ -358,7 +362,11 @@ fn limits(
 ) -> Result<Vec<Limit>, LabError> {
     let system = scene.system.with_stiffness_scale(scale)?;
     let lowest = options.dts.iter().copied().fold(f64::INFINITY, f64::min);
-    let highest = options.dts.iter().copied().fold(0.0, f64::max);
+    let omega = omega_max * scale.sqrt();
+    let mut highest = options.dts.iter().copied().fold(0.0, f64::max);
+    if omega > 0.0 {
+        highest = highest.max(LIMIT_SEARCH_H_OMEGA / omega);
+    }
     let stable_at = |method: Method, dt: f64| -> Result<bool, LabError> {
         let steps = cell_steps(options.duration, options.min_steps, dt);
         Ok(run_cell(
@@ -404,7 +412,7 @@ fn limits(
                 }
             }
             limit.max_stable_dt = Some(lo);
-            limit.h_omega_limit = Some(lo * omega_max * scale.sqrt());
+            limit.h_omega_limit = Some(lo * omega);
         }
         Ok(limit)
     };

@@ -111,18 +111,21 @@ fn the_richardson_estimate_is_within_a_factor_two_of_the_references_true_error()
     );
 }
 
+/// A change that makes options invalid.
+type Spoil = fn(&mut AccuracyOptions);
+
 #[test]
 fn bad_options_are_errors_naming_the_option() {
     let scene = builtin::load("damped-oscillator").unwrap();
     let base = AccuracyOptions::for_scene(&scene);
-    let cases: [(&str, Box<dyn Fn(&mut AccuracyOptions)>); 7] = [
-        ("frames", Box::new(|o| o.frames = 0)),
-        ("repeat", Box::new(|o| o.repeat = 0)),
-        ("dt", Box::new(|o| o.dts[3] = -1e-3)),
-        ("tolerances", Box::new(|o| o.tolerances.clear())),
-        ("tolerance", Box::new(|o| o.tolerances[0] = f64::NAN)),
-        ("duration", Box::new(|o| o.duration = f64::INFINITY)),
-        ("reference dt", Box::new(|o| o.reference_dt = Some(0.0))),
+    let cases: [(&str, Spoil); 7] = [
+        ("frames", |o| o.frames = 0),
+        ("repeat", |o| o.repeat = 0),
+        ("dt", |o| o.dts[3] = -1e-3),
+        ("tolerances", |o| o.tolerances.clear()),
+        ("tolerance", |o| o.tolerances[0] = f64::NAN),
+        ("duration", |o| o.duration = f64::INFINITY),
+        ("reference dt", |o| o.reference_dt = Some(0.0)),
     ];
     for (option, spoil) in cases {
         let mut options = base.clone();

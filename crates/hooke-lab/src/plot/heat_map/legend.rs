@@ -36,7 +36,10 @@ pub(super) const LEGEND_LINE: f32 = 28.0;
 fn legend_entries(omega: Option<f64>, shade: Shade) -> Vec<(Key, String)> {
     let top_ratio = crate::plot::format_value(10f64.powf(shade.top_log));
     let mut entries = vec![
-        (Key::Ramp, format!("stable, max E/E0 1 to {top_ratio}")),
+        (
+            Key::Ramp,
+            format!("stable, max energy ratio 1 to {top_ratio}"),
+        ),
         (Key::Unstable, "unstable or non-finite".to_owned()),
     ];
     if let Some(omega) = omega {

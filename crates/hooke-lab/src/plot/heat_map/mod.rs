@@ -18,7 +18,8 @@ use legend::{LEGEND_LINE, draw_legend, legend_lines};
 pub struct Cell {
     /// Whether the run stayed bounded (as the caller judged it).
     pub stable: bool,
-    /// The largest ratio E(t)/E(0) of total energy seen during the run.
+    /// The largest energy ratio seen during the run (energy over initial
+    /// energy plus work done on the system, see `trial::EnergyBudget`).
     pub max_energy_ratio: f64,
 }
 
