@@ -77,7 +77,24 @@
 //! hooke [run] [SCENE.toml] [--builtin NAME] [--out DIR] [--no-gif] [--duration S] [--quiet]
 //! hooke scenes                 # the built-in scenes
 //! hooke check SCENE.toml       # validate a scene file and say what it holds
+//! hooke stability [SCENE.toml] [--builtin NAME] [--methods A,B] [--stiffness VALUES]
+//!                 [--dt VALUES] [--duration S] [--min-steps N] [--energy-bound B]
+//!                 [--limit] [--limit-stiffness S] [--out DIR] [--quiet]
+//! hooke accuracy  [SCENE.toml] [--builtin NAME] [--methods A,B] [--dt VALUES]
+//!                 [--tolerances VALUES] [--duration S] [--frames N] [--repeat N]
+//!                 [--reference-dt S] [--out DIR] [--quiet]
 //! ```
+//!
+//! `VALUES` is a comma-separated list of numbers and log-spaced ranges
+//! `FIRST:LAST:COUNT`. Both lab commands also take `--scale-stiffness S`
+//! (every spring's stiffness times `S` first), `--solver cholesky|pcg` and
+//! `--newton N` (the implicit methods' solver and Newton iterations). They
+//! run `hooke-lab`'s measurements and write into `--out DIR`:
+//!
+//! | command | files |
+//! | --- | --- |
+//! | `hooke stability` | `stability.json` (the `StabilityReport`: every cell, and with `--limit` each integrator's largest stable step), `stability.png` (one stable/unstable map per integrator over stiffness × step, with the line `h·ω_max = 2`) |
+//! | `hooke accuracy` | `accuracy.json` (the `AccuracyReport`: the reference, every run's error, wall time and work, each integrator's observed order), `work_precision.png` (error against wall time), `convergence.png` (error against step) |
 //!
 //! # Errors
 //!

@@ -2,22 +2,16 @@
 //! built-in scenes, checking shipped and malformed scene files, running a
 //! small scene file end to end, and failing with a message, never a panic.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use hooke_cli::{SUMMARY_FILE, Summary, run_cli};
+use hooke_cli::{SUMMARY_FILE, Summary};
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::DefaultElement;
 
-/// Runs `hooke ARGS...` and returns the exit code, standard output and
-/// standard error.
-fn hooke(args: &[&str]) -> (ExitCode, String, String) {
-    let (mut out, mut err) = (Vec::new(), Vec::new());
-    let argv = std::iter::once("hooke").chain(args.iter().copied());
-    let code = run_cli(argv, &mut out, &mut err);
-    let text = |bytes| String::from_utf8(bytes).unwrap();
-    (code, text(out), text(err))
-}
+use common::hooke;
 
 fn shipped(name: &str) -> String {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -2,19 +2,13 @@
 //! scenes: the JSON has the documented fields and agrees with theory, the
 //! figures are PNG images, and bad options are errors naming the option.
 
+mod common;
+
 use std::path::Path;
 use std::process::ExitCode;
 
-use hooke_cli::run_cli;
+use common::hooke;
 use serde_json::Value;
-
-fn hooke(args: &[&str]) -> (ExitCode, String, String) {
-    let (mut out, mut err) = (Vec::new(), Vec::new());
-    let argv = std::iter::once("hooke").chain(args.iter().copied());
-    let code = run_cli(argv, &mut out, &mut err);
-    let text = |bytes| String::from_utf8(bytes).unwrap();
-    (code, text(out), text(err))
-}
 
 fn json(path: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()

@@ -177,28 +177,7 @@ impl AccuracyOptions {
     }
 
     fn check(&self) -> Result<(), LabError> {
-        let positive = |name: &'static str, v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(LabError::Invalid {
-                    name,
-                    value: v.to_string(),
-                    expected: "a positive, finite number",
-                })
-            }
-        };
-        let at_least_one = |name: &'static str, n: usize| {
-            if n == 0 {
-                Err(LabError::Invalid {
-                    name,
-                    value: "0".into(),
-                    expected: "at least one",
-                })
-            } else {
-                Ok(())
-            }
-        };
+        let (positive, at_least_one) = (LabError::positive, LabError::at_least_one);
         at_least_one("methods", self.methods.len())?;
         if self.methods.iter().any(|m| m.is_fixed_step()) {
             at_least_one("dt values", self.dts.len())?;

@@ -33,3 +33,31 @@ pub enum LabError {
         reason: String,
     },
 }
+
+impl LabError {
+    /// `Ok` if `value` (the option `name`) is positive and finite.
+    pub(crate) fn positive(name: &'static str, value: f64) -> Result<(), Self> {
+        if value.is_finite() && value > 0.0 {
+            Ok(())
+        } else {
+            Err(Self::Invalid {
+                name,
+                value: value.to_string(),
+                expected: "a positive, finite number",
+            })
+        }
+    }
+
+    /// `Ok` if there is at least one of `name`.
+    pub(crate) fn at_least_one(name: &'static str, count: usize) -> Result<(), Self> {
+        if count == 0 {
+            Err(Self::Invalid {
+                name,
+                value: "0".into(),
+                expected: "at least one",
+            })
+        } else {
+            Ok(())
+        }
+    }
+}

@@ -93,17 +93,10 @@ impl StabilityOptions {
     }
 
     fn check(&self) -> Result<(), LabError> {
-        let positive = |name: &'static str, v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(LabError::Invalid {
-                    name,
-                    value: v.to_string(),
-                    expected: "a positive, finite number",
-                })
-            }
-        };
+        let (positive, at_least_one) = (LabError::positive, LabError::at_least_one);
+        at_least_one("methods", self.methods.len())?;
+        at_least_one("stiffness scales", self.scales.len())?;
+        at_least_one("dt values", self.dts.len())?;
         for &s in &self.scales {
             positive("stiffness scale", s)?;
         }
@@ -118,23 +111,8 @@ impl StabilityOptions {
                 expected: "a finite number of at least 1",
             });
         }
-        if let Some(s) = self.limit_scale {
-            positive("limit stiffness scale", s)?;
-        }
-        let empty = |name: &'static str, len: usize| {
-            if len == 0 {
-                Err(LabError::Invalid {
-                    name,
-                    value: "none".into(),
-                    expected: "at least one",
-                })
-            } else {
-                Ok(())
-            }
-        };
-        empty("methods", self.methods.len())?;
-        empty("stiffness scales", self.scales.len())?;
-        empty("dt values", self.dts.len())
+        self.limit_scale
+            .map_or(Ok(()), |s| positive("limit stiffness scale", s))
     }
 }
 
