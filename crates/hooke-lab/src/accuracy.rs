@@ -35,7 +35,11 @@
 //! and `dt_min` the smallest `dt`), checked against runs at `2h_ref` and
 //! `4h_ref` by Richardson's estimate (see [`ReferenceReport`]). The
 //! reference is reported `converged` when its estimated error is at most a
-//! tenth of the smallest `error_rms` measured.
+//! tenth of the smallest `error_rms` measured; each run is marked
+//! `resolved` when its `error_rms` is at least ten times the reference's
+//! estimated error, and only resolved runs are plotted (and count in the
+//! least wall time to an error), so every error plotted lies at least ten
+//! times above the reference's own.
 //!
 //! # Observed order
 //!
@@ -219,8 +223,10 @@ pub struct ReferenceReport {
     /// Its estimated error, m, largest over the checkpoints: Richardson's
     /// `D₁/(2^q − 1)`, with `D₁ = max_k e_{2h,h}(t_k)` the largest RMS
     /// difference between the runs at `2h_ref` and `h_ref`,
-    /// `D₂ = max_k e_{4h,2h}(t_k)`, `p = log₂(D₂/D₁)` and `q = min(p, 4)`
-    /// (infinite when `p ≤ 0`); `ε·X` for the closed form.
+    /// `D₂ = max_k e_{4h,2h}(t_k)`, `p = log₂(D₂/D₁)` and `q = min(p, 4)`;
+    /// when `p ≤ 0` the differences no longer shrink with the step (they
+    /// are rounding, on stiff scenes about 10⁻⁹ m) and the estimate is `D₁`
+    /// itself. `ε·X` for the closed form.
     pub estimated_error: f64,
     /// `p`, the numerical reference's observed order.
     pub observed_order: Option<f64>,
@@ -257,6 +263,10 @@ pub struct Run {
     pub linear_solves: usize,
     /// Why the run stopped early, if it did.
     pub failure: Option<String>,
+    /// Whether the reference resolves the error: `error_rms` is at least
+    /// ten times the reference's estimated error. Plots leave out the
+    /// runs that are not.
+    pub resolved: bool,
 }
 
 /// A method's observed order of convergence.
@@ -319,27 +329,28 @@ impl AccuracyReport {
                     series.len() - 1
                 }
             };
-            if let Some(e) = y(r) {
+            if let Some(e) = y(r).filter(|_| r.resolved) {
                 series[index].points.push((x(r), e));
             }
         }
         series
     }
 
-    /// The work–precision data: `(wall_s, error_rms)` per method.
+    /// The work–precision data: `(wall_s, error_rms)` per method, resolved
+    /// runs only.
     #[must_use]
     pub fn work_precision(&self) -> Vec<Series> {
         self.series(|r| r.wall_s, |r| r.error_rms)
     }
 
     /// The convergence data: `(step, error_max)` per method, the error
-    /// the orders are fitted to.
+    /// the orders are fitted to, resolved runs only.
     #[must_use]
     pub fn convergence(&self) -> Vec<Series> {
         self.series(|r| r.step, |r| r.error_max)
     }
 
-    /// Each method's least wall time among its runs with
+    /// Each method's least wall time among its resolved runs with
     /// `error_rms ≤ error` (`None` if no run got there).
     #[must_use]
     pub fn least_wall_time(&self, error: f64) -> Vec<(&'static str, Option<f64>)> {
@@ -491,6 +502,7 @@ fn measure(
         linear_iterations: first.report.linear_iterations,
         linear_solves: first.report.linear_solves,
         failure: first.failure.map(|e| e.to_string()),
+        resolved: false,
     })
 }
 
@@ -579,6 +591,11 @@ pub fn accuracy(
         .fold(f64::INFINITY, f64::min);
     reference.converged = reference.kind == ReferenceKind::Analytic
         || CONVERGED_FACTOR * reference.estimated_error <= smallest;
+    for run in &mut runs {
+        run.resolved = run
+            .error_rms
+            .is_some_and(|e| e >= CONVERGED_FACTOR * reference.estimated_error);
+    }
     let scales = Scales {
         reference_error: reference.estimated_error,
         position: position_scale,

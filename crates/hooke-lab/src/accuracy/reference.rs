@@ -169,8 +169,11 @@ const RK4_ORDER: f64 = 4.0;
 /// Richardson's estimate for a method of order `q` (for `x_h − x ≈ C hᵠ`,
 /// `x_{2h} − x_h ≈ (2ᵠ − 1) C hᵠ`). Taking `q` no larger than the observed
 /// `p` keeps the estimate honest where the motion is not smooth (contacts)
-/// and the reference converges more slowly than fourth order; a reference
-/// that does not converge at all (`p ≤ 0`) has an infinite estimate.
+/// and the reference converges more slowly than fourth order. Where the
+/// differences do not shrink (`p ≤ 0`) they are rounding or an
+/// unconverged reference, and the estimate is `D₁`: either way no smaller
+/// error can be measured against it, which is what the runs' `resolved`
+/// flag then says.
 #[derive(Debug, Clone)]
 pub(crate) struct Numerical {
     /// The reference's positions at the checkpoints.
@@ -243,7 +246,7 @@ pub(crate) fn numerical(
     let estimated_error = match observed_order {
         _ if d1 == 0.0 => 0.0,
         Some(p) if p > 0.0 => d1 / (2f64.powf(p.min(RK4_ORDER)) - 1.0),
-        Some(_) => f64::INFINITY,
+        Some(_) => d1,
         None => d1 / (2f64.powf(RK4_ORDER) - 1.0),
     };
     // The finest level comes last.
