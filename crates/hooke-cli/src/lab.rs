@@ -70,6 +70,9 @@ pub(crate) struct SceneArgs {
     /// cholesky).
     #[arg(long, value_name = "SOLVER")]
     solver: Option<SolverArg>,
+    /// The relative residual PCG stops at, with --solver pcg.
+    #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
+    pcg_tolerance: f64,
     /// The implicit methods' Newton iterations per step (default: the
     /// scene's, else 1).
     #[arg(long, value_name = "N")]
@@ -81,7 +84,7 @@ pub(crate) struct SceneArgs {
 pub(crate) enum SolverArg {
     /// Sparse Cholesky.
     Cholesky,
-    /// Block-Jacobi PCG to a relative residual of 1e-6.
+    /// Block-Jacobi PCG to the relative residual --pcg-tolerance.
     Pcg,
 }
 
@@ -110,7 +113,7 @@ impl SceneArgs {
             Some(SolverArg::Cholesky) => settings.solver = SolverSpec::Cholesky,
             Some(SolverArg::Pcg) => {
                 settings.solver = SolverSpec::Pcg {
-                    tolerance: 1e-6,
+                    tolerance: self.pcg_tolerance,
                     max_iterations: 1000,
                 };
             }

@@ -329,7 +329,7 @@ impl AccuracyReport {
                     series.len() - 1
                 }
             };
-            if let Some(e) = y(r).filter(|_| r.resolved) {
+            if let Some(e) = y(r).filter(|&e| r.resolved && e <= self.motion_scale) {
                 series[index].points.push((x(r), e));
             }
         }
@@ -337,35 +337,42 @@ impl AccuracyReport {
     }
 
     /// The work–precision data: `(wall_s, error_rms)` per method, resolved
-    /// runs only.
+    /// runs whose error is at most the size of the motion `S` only (a
+    /// larger error means no accuracy at all, typically a run that blew
+    /// up).
     #[must_use]
     pub fn work_precision(&self) -> Vec<Series> {
         self.series(|r| r.wall_s, |r| r.error_rms)
     }
 
     /// The convergence data: `(step, error_max)` per method, the error
-    /// the orders are fitted to, resolved runs only.
+    /// the orders are fitted to, with the runs of
+    /// [`AccuracyReport::work_precision`].
     #[must_use]
     pub fn convergence(&self) -> Vec<Series> {
         self.series(|r| r.step, |r| r.error_max)
     }
 
-    /// Each method's least wall time among its resolved runs with
-    /// `error_rms ≤ error` (`None` if no run got there).
+    /// Each method's least wall time among its runs with
+    /// `error_rms ≤ error`, resolved or not (a run below the reference's
+    /// resolution is below `error` too when `error` is resolved); `None`
+    /// if no run got there.
     #[must_use]
     pub fn least_wall_time(&self, error: f64) -> Vec<(&'static str, Option<f64>)> {
-        self.work_precision()
-            .into_iter()
-            .map(|s| {
-                let best = s
-                    .points
-                    .iter()
-                    .filter(|p| p.1 <= error)
-                    .map(|p| p.0)
-                    .reduce(f64::min);
-                (s.integrator, best)
-            })
-            .collect()
+        let mut least: Vec<(&'static str, Option<f64>)> = Vec::new();
+        for r in &self.runs {
+            let wall = r.error_rms.filter(|&e| e <= error).map(|_| r.wall_s);
+            match least.iter_mut().find(|(name, _)| *name == r.integrator) {
+                Some((_, best)) => {
+                    *best = match (*best, wall) {
+                        (Some(a), Some(b)) => Some(a.min(b)),
+                        (a, b) => a.or(b),
+                    };
+                }
+                None => least.push((r.integrator, wall)),
+            }
+        }
+        least
     }
 }
 
