@@ -299,8 +299,15 @@ pub fn stability(
             stopped: run.stopped,
         })
     };
+    // Cells differ in cost by orders of magnitude (an adaptive method at
+    // 10⁹ times the stiffness against a blow-up in three steps): one cell
+    // per task lets an idle thread take the next expensive one.
     #[cfg(feature = "parallel")]
-    let cells = jobs.par_iter().map(cell).collect::<Result<Vec<_>, _>>()?;
+    let cells = jobs
+        .par_iter()
+        .with_max_len(1)
+        .map(cell)
+        .collect::<Result<Vec<_>, _>>()?;
     #[cfg(not(feature = "parallel"))]
     let cells = jobs.iter().map(cell).collect::<Result<Vec<_>, _>>()?;
 
