@@ -143,7 +143,13 @@ impl SceneArgs {
             .collect()
     }
 
-    fn progress(&self, what: &str) -> ProgressBar {
+    /// Runs `measure` with a progress bar of `what` (hidden with
+    /// `--quiet`) fed by its progress callback.
+    fn measure<R>(
+        &self,
+        what: &str,
+        measure: impl FnOnce(&(dyn Fn(usize, usize) + Sync)) -> Result<R, LabError>,
+    ) -> Result<R, String> {
         let bar = if self.quiet {
             ProgressBar::hidden()
         } else {
@@ -154,7 +160,12 @@ impl SceneArgs {
         )) {
             bar.set_style(style.progress_chars("=> "));
         }
-        bar
+        let result = measure(&|done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        });
+        bar.finish_and_clear();
+        result.map_err(|e| e.to_string())
     }
 }
 
@@ -219,13 +230,9 @@ pub(crate) fn stability_command(args: &StabilityArgs, out: &mut dyn Write) -> Re
         }
     )
     .map_err(print)?;
-    let bar = args.scene.progress("cells");
-    let report = stability(&scene, &options, &|done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-    });
-    bar.finish_and_clear();
-    let report = report.map_err(|e| e.to_string())?;
+    let report = args
+        .scene
+        .measure("cells", |progress| stability(&scene, &options, progress))?;
     write_stability(&report, &args.scene.out).map_err(|e| e.to_string())?;
     print_stability(&report, &args.scene.out, out).map_err(print)
 }
@@ -424,13 +431,9 @@ pub(crate) fn accuracy_command(args: &AccuracyArgs, out: &mut dyn Write) -> Resu
         options.repeat
     )
     .map_err(print)?;
-    let bar = args.scene.progress("runs");
-    let report = accuracy(&scene, &options, &|done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-    });
-    bar.finish_and_clear();
-    let report = report.map_err(|e| e.to_string())?;
+    let report = args
+        .scene
+        .measure("runs", |progress| accuracy(&scene, &options, progress))?;
     write_accuracy(&report, &args.scene.out).map_err(|e| e.to_string())?;
     print_accuracy(&report, &args.scene.out, out).map_err(print)
 }
