@@ -3,7 +3,7 @@
 
 use std::ffi::OsString;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
@@ -136,7 +136,7 @@ where
 /// `hooke run`: an error message when the command failed, including a run
 /// that stopped early.
 fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), String> {
-    let scene = load_scene(args).map_err(|e| e.to_string())?;
+    let scene = run_scene(args).map_err(|e| e.to_string())?;
     let steps = scene.timing.steps();
     writeln!(
         out,
@@ -171,12 +171,18 @@ fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), String> {
     }
 }
 
-fn load_scene(args: &RunArgs) -> Result<Scene, CliError> {
-    let mut scene = match (&args.scene, &args.builtin) {
+/// The scene file at `path`, else the built-in scene `builtin`, else the
+/// default scene.
+pub(crate) fn load_scene(path: Option<&Path>, builtin: Option<&str>) -> Result<Scene, CliError> {
+    Ok(match (path, builtin) {
         (Some(path), _) => file::load(path)?,
         (None, Some(name)) => builtin::load(name)?,
         (None, None) => builtin::load(DEFAULT_SCENE)?,
-    };
+    })
+}
+
+fn run_scene(args: &RunArgs) -> Result<Scene, CliError> {
+    let mut scene = load_scene(args.scene.as_deref(), args.builtin.as_deref())?;
     if let Some(duration) = args.duration {
         scene.timing.duration = duration;
     }
@@ -229,7 +235,7 @@ fn list_scenes(out: &mut dyn Write) -> Result<(), String> {
 }
 
 /// `hooke check`.
-fn check(path: &std::path::Path, out: &mut dyn Write) -> Result<(), String> {
+fn check(path: &Path, out: &mut dyn Write) -> Result<(), String> {
     let text = file::load(path)
         .map_err(CliError::from)
         .and_then(|scene| describe(&scene))

@@ -13,11 +13,13 @@ use hooke_lab::{
     AccuracyOptions, AccuracyReport, LabError, Method, Range, StabilityOptions, StabilityReport,
     accuracy, stability,
 };
+use hooke_scenes::Scene;
 use hooke_scenes::SolverSpec;
-use hooke_scenes::{Scene, builtin, file};
 use indicatif::{ProgressBar, ProgressStyle};
 
+use crate::cli::load_scene;
 use crate::cli_error::CliError;
+use crate::runner::write_json;
 
 /// Values given on the command line as a comma-separated list of numbers
 /// and log-spaced ranges `FIRST:LAST:COUNT`, e.g. `1e-3:1e-1:9` or
@@ -89,13 +91,9 @@ pub(crate) enum SolverArg {
 }
 
 impl SceneArgs {
-    fn scene(&self, default: &str) -> Result<Scene, String> {
-        let mut scene = match (&self.scene, &self.builtin) {
-            (Some(path), _) => file::load(path),
-            (None, Some(name)) => builtin::load(name),
-            (None, None) => builtin::load(default),
-        }
-        .map_err(|e| e.to_string())?;
+    fn scene(&self) -> Result<Scene, String> {
+        let mut scene = load_scene(self.scene.as_deref(), self.builtin.as_deref())
+            .map_err(|e| e.to_string())?;
         if let Some(scale) = self.scale_stiffness {
             scene.system = scene
                 .system
@@ -202,7 +200,7 @@ pub(crate) struct StabilityArgs {
 
 /// `hooke stability`.
 pub(crate) fn stability_command(args: &StabilityArgs, out: &mut dyn Write) -> Result<(), String> {
-    let scene = args.scene.scene(crate::cli::DEFAULT_SCENE)?;
+    let scene = args.scene.scene()?;
     let mut options = StabilityOptions::for_scene(&scene);
     options.settings = args.scene.settings(&scene);
     options.methods = args.scene.methods(&Method::ALL)?;
@@ -240,17 +238,6 @@ pub(crate) fn stability_command(args: &StabilityArgs, out: &mut dyn Write) -> Re
 fn create_dir(dir: &Path) -> Result<(), CliError> {
     std::fs::create_dir_all(dir).map_err(|source| CliError::CreateDir {
         path: dir.to_path_buf(),
-        source,
-    })
-}
-
-fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(), CliError> {
-    let text = serde_json::to_string_pretty(value).map_err(|e| CliError::WriteSummary {
-        path: path.to_path_buf(),
-        source: std::io::Error::other(e),
-    })?;
-    std::fs::write(path, text + "\n").map_err(|source| CliError::WriteSummary {
-        path: path.to_path_buf(),
         source,
     })
 }
@@ -402,7 +389,7 @@ pub(crate) struct AccuracyArgs {
 
 /// `hooke accuracy`.
 pub(crate) fn accuracy_command(args: &AccuracyArgs, out: &mut dyn Write) -> Result<(), String> {
-    let scene = args.scene.scene(crate::cli::DEFAULT_SCENE)?;
+    let scene = args.scene.scene()?;
     let mut options = AccuracyOptions::for_scene(&scene);
     options.settings = args.scene.settings(&scene);
     options.methods = args.scene.methods(&options.methods)?;

@@ -230,7 +230,7 @@ pub fn run(
         error: failure.map(|(message, _)| message),
         out: options.out.clone(),
     };
-    write_summary(&options.out.join(SUMMARY_FILE), &summary)?;
+    write_json(&options.out.join(SUMMARY_FILE), &summary)?;
     Ok(summary)
 }
 
@@ -271,12 +271,14 @@ fn prepare_directory(dir: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
-fn write_summary(path: &Path, summary: &Summary) -> Result<(), CliError> {
+/// Writes `value` to `path` as indented JSON: `summary.json` and the lab's
+/// reports.
+pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(), CliError> {
     let failed = |source| CliError::WriteSummary {
         path: path.to_path_buf(),
         source,
     };
-    let text = serde_json::to_string_pretty(summary).map_err(|e| failed(e.into()))?;
+    let text = serde_json::to_string_pretty(value).map_err(|e| failed(e.into()))?;
     fs::write(path, text + "\n").map_err(failed)
 }
 

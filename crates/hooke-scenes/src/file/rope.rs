@@ -6,7 +6,7 @@ use toml::Spanned;
 use super::bodies::{At, Built, Common, PinNames, family, within_limit};
 use super::error::{SceneFileError, Source};
 use super::schema::{MovingPin, PinRef, SpringsTable, Vector};
-use super::values::{count, key, mass, vector};
+use super::values::{count, key, mass, non_negative, vector};
 use crate::Rope;
 
 /// `type = "rope"`.
@@ -57,16 +57,9 @@ pub(crate) fn rope(src: &Source<'_>, t: RopeTable, at: &At) -> Result<Built, Sce
         rope = rope.bend(s);
     }
     if let Some(fraction) = &t.rest_length_fraction {
-        let value = *fraction.get_ref();
-        if !(value.is_finite() && value >= 0.0) {
-            return Err(src.invalid(
-                fraction.span(),
-                key(&at.key, "rest_length_fraction"),
-                value.to_string(),
-                "a finite, non-negative number",
-            ));
-        }
-        rope = rope.rest_length_fraction(value);
+        let key = key(&at.key, "rest_length_fraction");
+        rope =
+            rope.rest_length_fraction(non_negative(src, fraction, &key, "of the initial length")?);
     }
     if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m")? {
         rope = rope.mass(m);
