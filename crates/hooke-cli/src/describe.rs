@@ -26,7 +26,7 @@ use crate::runner::check_timing;
 ///         triangles: placement.triangles(&cloth),
 ///         segments: Vec::new(),
 ///     }],
-///     integrator: IntegratorSpec::backward_euler(1),
+///     integrator: IntegratorSpec::backward_euler(),
 ///     timing: Timing { duration: 1.0, dt: 0.01, frame_rate: 25.0 },
 /// };
 /// let text = hooke_cli::describe(&scene)?;
@@ -169,6 +169,7 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
         IntegratorSpec::Adaptive { rtol, atol } => format!(", rtol {rtol}, atol {atol}"),
         IntegratorSpec::Implicit {
             solver,
+            linearized,
             newton_iterations,
             newton_tolerance,
             ..
@@ -180,12 +181,12 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
                     max_iterations,
                 } => format!("PCG to {tolerance:e} in at most {max_iterations} iterations"),
             };
-            if newton_iterations > 1 {
-                format!(
-                    ", {solver}, at most {newton_iterations} Newton iterations to {newton_tolerance} m/s"
-                )
+            if linearized {
+                format!(", {solver}, linearised (Baraff-Witkin, one solve)")
             } else {
-                format!(", {solver}, linearised (one Newton iteration)")
+                format!(
+                    ", {solver}, converged: at most {newton_iterations} Newton iterations to a relative {newton_tolerance:e}"
+                )
             }
         }
     }

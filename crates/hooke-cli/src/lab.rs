@@ -75,10 +75,14 @@ pub(crate) struct SceneArgs {
     /// The relative residual PCG stops at, with --solver pcg.
     #[arg(long, value_name = "TOL", default_value_t = 1e-6)]
     pcg_tolerance: f64,
-    /// The implicit methods' Newton iterations per step (default: the
-    /// scene's, else 1).
+    /// The implicit methods' cap on Newton iterations per (sub)step
+    /// (default: the scene's, else the integrator's).
     #[arg(long, value_name = "N")]
     newton: Option<usize>,
+    /// The implicit methods take Baraff and Witkin's linearised step (one
+    /// solve, no line search, no rejection) instead of converged ones.
+    #[arg(long)]
+    linearized: bool,
 }
 
 /// `--solver`.
@@ -104,7 +108,7 @@ impl SceneArgs {
     }
 
     /// The lab's method settings for `scene`, with `--solver` and
-    /// `--newton` applied.
+    /// `--newton` and `--linearized` applied.
     fn settings(&self, scene: &Scene) -> hooke_lab::Settings {
         let mut settings = hooke_lab::Settings::from_scene(&scene.integrator);
         match self.solver {
@@ -120,6 +124,7 @@ impl SceneArgs {
         if let Some(n) = self.newton {
             settings.newton_iterations = n;
         }
+        settings.linearized |= self.linearized;
         settings
     }
 

@@ -30,7 +30,7 @@ use crate::shape::Shape;
 ///     name: "oscillator".into(),
 ///     system: b.build()?,
 ///     bodies: Vec::new(),
-///     integrator: IntegratorSpec::backward_euler(1),
+///     integrator: IntegratorSpec::backward_euler(),
 ///     timing: Timing { duration: 1.0, dt: 0.01, frame_rate: 30.0 },
 /// };
 /// let mesh = hooke_cli::scene_mesh(&scene)?;

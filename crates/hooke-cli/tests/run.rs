@@ -60,7 +60,7 @@ fn cloth_on_sphere(duration: f64) -> Scene {
             triangles: placement.triangles(&cloth),
             segments: Vec::new(),
         }],
-        integrator: IntegratorSpec::backward_euler(3),
+        integrator: IntegratorSpec::backward_euler(),
         timing: Timing {
             duration,
             dt: 1.0 / 60.0,

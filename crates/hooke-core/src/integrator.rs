@@ -29,9 +29,23 @@ pub struct StepReport {
     pub linear_residual: f64,
     /// Newton iterations of implicit methods (a linearised step counts one).
     pub newton_iterations: usize,
-    /// Largest last Newton step `‖J⁻¹ g‖∞` of a step, in m/s: the residual of
-    /// the nonlinear equations in velocity units (zero where only linearised
-    /// steps were taken).
+    /// Most Newton iterations one (sub)step took.
+    pub newton_iterations_max: usize,
+    /// Steps (or substeps) accepted without meeting the method's convergence
+    /// test, because their step size had reached its floor.
+    pub unconverged_steps: usize,
+    /// Steps whose energy gain beyond the work of external forces was
+    /// removed by the last resort of an energy-checked method (see
+    /// `hooke_implicit::Implicit`).
+    pub energy_corrections: usize,
+    /// Largest energy, in J, that one step gained beyond the work of external
+    /// forces: removed by the last resort where [`Self::energy_corrections`]
+    /// counts it, otherwise left in the state.
+    pub energy_excess: f64,
+    /// Largest final Newton residual of a step: the last Newton step
+    /// `‖δ‖∞` relative to the step's velocity scale (see
+    /// `hooke_implicit::Implicit`), zero where only linearised steps were
+    /// taken.
     pub newton_residual: f64,
     /// Particle–obstacle contacts resolved at the end of the step.
     pub contacts: usize,
@@ -60,6 +74,10 @@ impl AddAssign for StepReport {
         self.unconverged_solves += other.unconverged_solves;
         self.linear_residual = self.linear_residual.max(other.linear_residual);
         self.newton_iterations += other.newton_iterations;
+        self.newton_iterations_max = self.newton_iterations_max.max(other.newton_iterations_max);
+        self.unconverged_steps += other.unconverged_steps;
+        self.energy_corrections += other.energy_corrections;
+        self.energy_excess = self.energy_excess.max(other.energy_excess);
         self.contacts += other.contacts;
         self.newton_residual = self.newton_residual.max(other.newton_residual);
     }

@@ -206,6 +206,15 @@ impl Contacts {
         any
     }
 
+    /// The particles held by obstacles in the present step, with the
+    /// obstacles' velocities.
+    pub(crate) fn held(&self) -> impl Iterator<Item = (usize, Vec3)> + Clone + '_ {
+        self.active
+            .iter()
+            .enumerate()
+            .filter_map(|(i, a)| a.map(|a| (i, a.velocity)))
+    }
+
     /// Makes the solve's unknown the free part `y` of `Δv = y + z`: `b ← b −
     /// A z`.
     pub(crate) fn prescribe(&mut self, a: &BlockMatrix, b: &mut [Vec3]) {

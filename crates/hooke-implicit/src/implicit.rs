@@ -5,11 +5,11 @@ use hooke_core::{
     Vec3, check_step,
 };
 
-use crate::assembly::{Assembler, Linearization};
+use crate::assembly::Assembler;
 use crate::cg::PcgWorkspace;
 use crate::contact::Contacts;
-use crate::solver::{LinearSolver, Solve, Topology, topology};
-use crate::vector::{dot, for_each_row, for_each_row2};
+use crate::newton::Outcome;
+use crate::solver::{LinearSolver, Topology};
 
 /// The time discretisation. Both are implicit, A-stable and L-stable: stiff
 /// modes are damped, never amplified, at any step size.
@@ -31,30 +31,77 @@ pub enum Scheme {
     Bdf2,
 }
 
-/// A linearly implicit integrator on the assembled mass-spring system
-/// (Baraff & Witkin, *Large Steps in Cloth Simulation*, SIGGRAPH 1998).
+/// An implicit integrator on the assembled mass-spring system.
 ///
-/// Each step linearises the forces at the current state and solves
+/// # The converged step (default)
+///
+/// A step of `h` solves the scheme's nonlinear equations
+/// `g(v) = M(v − ṽ) − βh f(x̃ + βh v, v) = 0` for the new velocity `v`
+/// (`x = x̃ + βh v`; backward Euler: `β = 1`, `x̃ = xₙ`, `ṽ = vₙ`; BDF2: see
+/// [`Scheme`]) by minimising the incremental potential whose gradient is `g`
+/// (Gast, Schroeder, Stomakhin, Jiang & Teran, *Optimization Integrator for
+/// Large Time Steps*, 2015; Li et al., *Incremental Potential Contact*,
+/// 2020):
 ///
 /// ```text
-/// (M + βh C + β²h² K) Δv = M(ṽ − vₙ) + βh [fₙ − K (x̃ − xₙ + βh vₙ)]
+/// Φ(v) = ½‖v − ṽ‖²_M + V(x̃ + βh v) + βh R(v) + D(v)
 /// ```
 ///
-/// for `Δv = vₙ₊₁ − vₙ`, with `K` the spring stiffness matrix (compressed
-/// springs clamped by default), `C` the damping matrix, and `β`, `x̃`, `ṽ`
-/// given by the [`Scheme`] (backward Euler: `β = 1`, `x̃ = xₙ`, `ṽ = vₙ`,
-/// which is exactly `(M − h ∂f/∂v − h² ∂f/∂x) Δv = h (f₀ + h ∂f/∂x v₀)`).
-/// Pinned particles act through the filter of the linear solver: their
-/// velocity does not change.
+/// with `V` the spring and gravitational potential, `R` the dampers'
+/// Rayleigh potential (directions frozen at the first iterate) and `D` the
+/// friction's dissipation potential. Newton's method starts at `vₙ` (with
+/// the velocity changes of pins and contacts applied), solves
+/// `(M + βh C + β²h² K) δ = −g` with `K` made positive definite (compressed
+/// springs clamped), and accepts every iterate, the first one included,
+/// only through a backtracking line search that decreases `Φ`
+/// (Armijo, `Φ(v + αδ) ≤ Φ(v) + 10⁻⁴ α ∇Φ·δ`). It stops when
 ///
-/// With `newton_iterations > 1` the step goes on to Newton iterations on the
-/// scheme's nonlinear equations `g(v) = M(v − ṽ) − βh f(x̃ + βh v, v) = 0`
-/// (damping directions frozen at the step's start), each solve followed by a
-/// backtracking (Armijo) line search on the incremental potential whose
-/// gradient is `g`. They stop once a Newton step `δ = −J⁻¹ g` changes no
-/// velocity component by more than the tolerance (in m/s): the residual
-/// measured in velocity units, as in Li et al., *Incremental Potential
-/// Contact*, SIGGRAPH 2020.
+/// ```text
+/// ‖δ‖∞ ≤ ε · max(‖v + δ − vₙ‖∞, ‖v + δ‖∞)
+/// ```
+///
+/// — the Newton step is a fraction `ε` of the step's velocity scale
+/// (default `ε` = 10⁻⁹; [`Implicit::with_newton`]), a rule without units
+/// that means the same at 10⁻² and 10¹² N/m — or when the line search can no
+/// longer decrease `Φ` and `|∇Φ·δ|` is at the rounding level of `Φ`.
+///
+/// # Step rejection, substeps and the energy test
+///
+/// A converged step of backward Euler on a convex energy cannot gain energy,
+/// but a spring's `½k(l − L)²` is not convex under compression, so each step
+/// is also tested: `E(xₙ₊₁, vₙ₊₁) ≤ E(xₙ, vₙ) + W` (the `energy` test,
+/// with `W` the work of scripted pins and moving obstacles). A step that
+/// fails it, or whose Newton iteration does not converge within its cap, or
+/// whose line search stalls, is rejected and retried as two substeps of
+/// half the size, down to a floor of `h / 2^k` (`k` = 10 by default,
+/// [`Implicit::with_max_halvings`]); after an accepted substep the size
+/// doubles again, up to the step the caller asked for, which is always
+/// delivered whole. BDF2 keeps its history across substeps of different
+/// sizes with its variable-step coefficients (step ratio `ω = h/hₙ₋₁ ≤ 2`).
+/// At the floor, a step is accepted as it is and counted in
+/// [`StepReport::unconverged_steps`] (or, in [strict](Implicit::strict)
+/// mode, fails with [`StepError::NoConvergence`]); if it gained energy, the
+/// last resort scales the free particles' velocities so that the kinetic
+/// energy absorbs the excess, counted in [`StepReport::energy_corrections`]
+/// with the excess in [`StepReport::energy_excess`]. Nothing is silent.
+///
+/// # The linearised step (Baraff & Witkin)
+///
+/// [`Implicit::linearized`] takes exactly Baraff & Witkin's step (*Large
+/// Steps in Cloth Simulation*, SIGGRAPH 1998): one linear solve at the
+/// current state,
+///
+/// ```text
+/// (M + βh C + β²h² K) Δv = M(ṽ − vₙ) + βh [fₙ − K (x̃ − xₙ + βh vₙ)],
+/// ```
+///
+/// for backward Euler `(M − h ∂f/∂v − h² ∂f/∂x) Δv = h (f₀ + h ∂f/∂x v₀)`,
+/// no line search, no rejection. It is exact for linear springs, but it
+/// cannot see the stretch `δ²/2L` of a spring rotated by `δ` in one step:
+/// at large steps on stiff cloth it stores energy (up to thousands of times
+/// the initial energy on a 24×24 cloth at 10⁴ N/m and 0.1 s steps) before
+/// damping it out. Its energy gain is reported in
+/// [`StepReport::energy_excess`], never corrected.
 ///
 /// ```
 /// use hooke_core::{Integrator, reference::Sheet};
@@ -65,51 +112,63 @@ pub enum Scheme {
 /// let mut state = system.initial_state();
 /// let mut integrator = Implicit::backward_euler();
 /// for _ in 0..30 {
-///     integrator.step(&system, &mut state, 1.0 / 30.0)?;
+///     let report = integrator.step(&system, &mut state, 1.0 / 30.0)?;
+///     assert_eq!(report.unconverged_steps, 0);
 /// }
 /// assert!(system.max_strain(&state)? < 0.01);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Debug)]
 pub struct Implicit {
-    scheme: Scheme,
-    solver: LinearSolver,
-    newton_iterations: usize,
-    newton_tolerance: f64,
-    strict: bool,
-    compressed: CompressedSprings,
-    history: History,
-    topology: Option<Topology>,
-    assembler: Assembler,
-    contacts: Contacts,
-    contact_margin: f64,
-    work: Work,
+    pub(crate) scheme: Scheme,
+    pub(crate) solver: LinearSolver,
+    pub(crate) linearized: bool,
+    pub(crate) newton_iterations: usize,
+    pub(crate) newton_tolerance: f64,
+    pub(crate) max_halvings: u32,
+    pub(crate) strict: bool,
+    pub(crate) compressed: CompressedSprings,
+    pub(crate) history: History,
+    /// The substep size to try first: the last accepted one, doubled.
+    pub(crate) substep: f64,
+    pub(crate) topology: Option<Topology>,
+    pub(crate) assembler: Assembler,
+    pub(crate) contacts: Contacts,
+    /// The contacts at the start of a substep, restored when it is rejected.
+    pub(crate) saved_contacts: Contacts,
+    pub(crate) contact_margin: f64,
+    pub(crate) work: Work,
 }
 
 /// Per-particle buffers, kept so that a step does not allocate.
 #[derive(Debug, Default)]
-struct Work {
-    b: Vec<Vec3>,
-    /// The first solve's `Δv`, kept as the next step's warm start.
-    dv: Vec<Vec3>,
+pub(crate) struct Work {
+    pub(crate) b: Vec<Vec3>,
+    /// The linearised step's `Δv`, kept as the next step's warm start.
+    pub(crate) dv: Vec<Vec3>,
     /// A Newton correction.
-    delta: Vec<Vec3>,
-    v: Vec<Vec3>,
-    x: Vec<Vec3>,
-    trial: Vec<Vec3>,
-    x_tilde: Vec<Vec3>,
-    v_tilde: Vec<Vec3>,
-    u: Vec<Vec3>,
-    inertia: Vec<Vec3>,
+    pub(crate) delta: Vec<Vec3>,
+    pub(crate) v: Vec<Vec3>,
+    pub(crate) x: Vec<Vec3>,
+    pub(crate) trial: Vec<Vec3>,
+    pub(crate) x_tilde: Vec<Vec3>,
+    pub(crate) v_tilde: Vec<Vec3>,
+    pub(crate) u: Vec<Vec3>,
+    pub(crate) inertia: Vec<Vec3>,
     /// BDF2's `xₙ₋₁`, `vₙ₋₁`.
-    x_prev: Vec<Vec3>,
-    v_prev: Vec<Vec3>,
-    pcg: PcgWorkspace,
+    pub(crate) x_prev: Vec<Vec3>,
+    pub(crate) v_prev: Vec<Vec3>,
+    /// The state at the start of the caller's step, restored on an error.
+    pub(crate) x_start: Vec<Vec3>,
+    pub(crate) v_start: Vec<Vec3>,
+    pub(crate) pcg: PcgWorkspace,
 }
 
 impl Implicit {
-    /// Backward Euler with PCG, one linearised step, clamped compressed
-    /// springs, non-strict.
+    /// Backward Euler with PCG, converged Newton steps (at most
+    /// [`Implicit::NEWTON_ITERATIONS`], tolerance
+    /// [`Implicit::NEWTON_TOLERANCE`]), step rejection down to `h/2¹⁰`,
+    /// clamped compressed springs, non-strict.
     #[must_use]
     pub fn backward_euler() -> Self {
         Self::new(Scheme::BackwardEuler)
@@ -121,20 +180,31 @@ impl Implicit {
         Self::new(Scheme::Bdf2)
     }
 
+    /// The default cap on Newton iterations per (sub)step.
+    pub const NEWTON_ITERATIONS: usize = 30;
+    /// The default relative Newton tolerance `ε`.
+    pub const NEWTON_TOLERANCE: f64 = 1e-6;
+    /// The default number of halvings a step may be cut by.
+    pub const MAX_HALVINGS: u32 = 10;
+
     /// An integrator of the given scheme with the defaults.
     #[must_use]
     pub fn new(scheme: Scheme) -> Self {
         Self {
             scheme,
             solver: LinearSolver::default(),
-            newton_iterations: 1,
-            newton_tolerance: 1e-3,
+            linearized: false,
+            newton_iterations: Self::NEWTON_ITERATIONS,
+            newton_tolerance: Self::NEWTON_TOLERANCE,
+            max_halvings: Self::MAX_HALVINGS,
             strict: false,
             compressed: CompressedSprings::Clamped,
             history: History::default(),
+            substep: f64::INFINITY,
             topology: None,
             assembler: Assembler::default(),
             contacts: Contacts::default(),
+            saved_contacts: Contacts::default(),
             contact_margin: 1e-4,
             work: Work::default(),
         }
@@ -153,9 +223,10 @@ impl Implicit {
         self
     }
 
-    /// Takes up to `max_iterations` Newton steps (1 = the linearised step),
-    /// stopping once a step changes no velocity component by more than
-    /// `tolerance` m/s.
+    /// Takes up to `max_iterations` Newton steps per (sub)step, stopping
+    /// once a step `δ` has `‖δ‖∞ ≤ tolerance · max(‖v − vₙ‖∞, ‖v‖∞)` (see
+    /// the type's docs); a (sub)step that does not converge within the cap
+    /// is rejected and retried in halves.
     ///
     /// ```
     /// let integrator = hooke_implicit::Implicit::backward_euler().with_newton(8, 1e-6)?;
@@ -191,10 +262,43 @@ impl Implicit {
         Ok(self)
     }
 
-    /// In strict mode a linear solve that stops at its iteration cap fails the
-    /// step with [`StepError::NoConvergence`]; otherwise (the default) its
-    /// approximate solution is used and counted in
-    /// [`StepReport::unconverged_solves`].
+    /// Takes Baraff & Witkin's linearised step (one solve, no line search,
+    /// no rejection) instead of the converged one; see the type's docs for
+    /// what it risks.
+    ///
+    /// ```
+    /// let integrator = hooke_implicit::Implicit::backward_euler().linearized();
+    /// ```
+    #[must_use]
+    pub fn linearized(mut self) -> Self {
+        self.linearized = true;
+        self
+    }
+
+    /// Whether the step is the linearised one.
+    #[must_use]
+    pub fn is_linearized(&self) -> bool {
+        self.linearized
+    }
+
+    /// Lets a rejected step be cut in half at most `halvings` times (the
+    /// floor is `h / 2^halvings`); 0 accepts every step as it comes.
+    ///
+    /// ```
+    /// let integrator = hooke_implicit::Implicit::backward_euler().with_max_halvings(4);
+    /// ```
+    #[must_use]
+    pub fn with_max_halvings(mut self, halvings: u32) -> Self {
+        self.max_halvings = halvings;
+        self
+    }
+
+    /// In strict mode a linear solve that stops at its iteration cap, or a
+    /// step accepted at the substep floor without converging, fails the step
+    /// with [`StepError::NoConvergence`] naming the time and the residual;
+    /// otherwise (the default) the approximate solution is used and counted
+    /// in [`StepReport::unconverged_solves`] and
+    /// [`StepReport::unconverged_steps`].
     #[must_use]
     pub fn strict(mut self, strict: bool) -> Self {
         self.strict = strict;
@@ -248,7 +352,6 @@ impl Integrator for Implicit {
         dt: f64,
     ) -> Result<StepReport, StepError> {
         check_step(system, state, dt)?;
-        let continues = self.history.take_same_step(system, state, dt);
         let n = state.len();
         let w = &mut self.work;
         for buffer in [
@@ -264,165 +367,54 @@ impl Integrator for Implicit {
             &mut w.inertia,
             &mut w.x_prev,
             &mut w.v_prev,
+            &mut w.x_start,
+            &mut w.v_start,
         ] {
             buffer.resize(n, Vec3::zeros());
         }
-        let time = state.time();
-        let (x0, v0) = (state.positions(), state.velocities());
-        let bdf2 = self.scheme == Scheme::Bdf2 && continues;
-        let beta_h = if bdf2 { 2.0 / 3.0 * dt } else { dt };
-        let masses = system.masses();
-        for i in 0..n {
-            (w.x_tilde[i], w.v_tilde[i]) = if bdf2 {
-                (
-                    (4.0 * x0[i] - w.x_prev[i]) / 3.0,
-                    (4.0 * v0[i] - w.v_prev[i]) / 3.0,
-                )
-            } else {
-                (x0[i], v0[i])
-            };
-            w.u[i] = w.x_tilde[i] - x0[i] + beta_h * v0[i];
-            w.inertia[i] = masses[i] * (w.v_tilde[i] - v0[i]);
-        }
-        if !continues {
-            w.dv.fill(Vec3::zeros());
-        }
-
-        let mut report = StepReport {
-            accepted_steps: 1,
-            ..StepReport::default()
-        };
-        let (compressed, solver, strict) = (self.compressed, self.solver, self.strict);
-        let topology = topology(&mut self.topology, solver, system)?;
-        let w = &mut self.work;
-        let lin = Linearization {
-            positions: x0,
-            velocities: v0,
-            displacement: Some(&w.u),
-            inertia: &w.inertia,
-            beta_h,
-            compressed,
-            freeze_directions: true,
-        };
-        let solve = Solve {
-            system,
-            solver,
-            strict,
-            time,
-        };
-        let contacts = &mut self.contacts;
-        let constrained = (!system.obstacles().is_empty() || !system.pin_paths().is_empty())
-            && contacts.begin(
+        w.x_start.copy_from_slice(state.positions());
+        w.v_start.copy_from_slice(state.velocities());
+        let (start, end) = (state.time(), state.time() + dt);
+        let floor = dt / f64::from(self.max_halvings).exp2();
+        let mut h = self.substep.min(dt);
+        let mut report = StepReport::default();
+        loop {
+            let remaining = end - state.time();
+            // The last substep ends exactly at the caller's time.
+            let last = h >= remaining * (1.0 - 1e-12);
+            let size = if last { remaining } else { h };
+            let at_floor = self.linearized || size <= floor * (1.0 + 1e-12);
+            let outcome = self.attempt(
                 system,
-                x0,
-                v0,
-                state.touching(),
-                time,
-                dt,
-                self.contact_margin,
-                topology.matrix_and_filters_mut().1,
+                state,
+                size,
+                last.then_some(end),
+                at_floor,
+                &mut report,
             );
-        solve.assemble(&mut self.assembler, topology, &lin, &mut w.b)?;
-        if constrained {
-            contacts.prescribe(topology.matrix(), &mut w.b);
-            contacts.add_friction(topology, v0, &mut w.b);
-        }
-        solve.solve(topology, &w.b, &mut w.dv, &mut w.pcg, &mut report)?;
-        if constrained {
-            for_each_row(&mut w.v, |i, v| {
-                *v = v0[i] + w.dv[i] + contacts.prescribed[i]
-            });
-            let (matrix, filters) = topology.matrix_and_filters_mut();
-            contacts.release(matrix, &w.dv, &w.b, filters);
-        } else {
-            for_each_row(&mut w.v, |i, v| *v = v0[i] + w.dv[i]);
-        }
-
-        for _ in 1..self.newton_iterations {
-            for_each_row2(&mut w.x, &mut w.inertia, |i, x, inertia| {
-                *x = w.x_tilde[i] + beta_h * w.v[i];
-                *inertia = -masses[i] * (w.v[i] - w.v_tilde[i]);
-            });
-            let lin = Linearization {
-                positions: &w.x,
-                velocities: &w.v,
-                displacement: None,
-                inertia: &w.inertia,
-                beta_h,
-                compressed,
-                freeze_directions: false,
-            };
-            w.delta.fill(Vec3::zeros());
-            solve.assemble(&mut self.assembler, topology, &lin, &mut w.b)?;
-            if constrained {
-                self.contacts.add_friction(topology, &w.v, &mut w.b);
-            }
-            solve.solve(topology, &w.b, &mut w.delta, &mut w.pcg, &mut report)?;
-            if constrained {
-                let (matrix, filters) = topology.matrix_and_filters_mut();
-                self.contacts.release(matrix, &w.delta, &w.b, filters);
-            }
-            // The Newton step J⁻¹(−g) measures the residual in velocity units.
-            let step = w.delta.iter().map(|d| d.amax()).fold(0.0, f64::max);
-            report.newton_residual = step;
-            if step <= self.newton_tolerance {
-                for_each_row(&mut w.v, |i, v| *v += w.delta[i]);
-                break;
-            }
-            // Backtracking (Armijo) on Φ along δ; the slope is ∇Φ·δ = −bᵀδ.
-            let slope = -dot(&w.b, &w.delta);
-            let start = self.assembler.potential(
-                system,
-                topology.pattern(),
-                &w.x,
-                &w.v,
-                &w.v_tilde,
-                beta_h,
-            ) + if constrained {
-                self.contacts.dissipation(&w.v)
-            } else {
-                0.0
-            };
-            let mut alpha = 1.0;
-            let accepted = loop {
-                for_each_row(&mut w.trial, |i, t| *t = w.v[i] + alpha * w.delta[i]);
-                for_each_row(&mut w.x, |i, x| *x = w.x_tilde[i] + beta_h * w.trial[i]);
-                let value = self.assembler.potential(
-                    system,
-                    topology.pattern(),
-                    &w.x,
-                    &w.trial,
-                    &w.v_tilde,
-                    beta_h,
-                ) + if constrained {
-                    self.contacts.dissipation(&w.trial)
-                } else {
-                    0.0
-                };
-                if value <= start + 1e-4 * alpha * slope {
-                    break true;
+            match outcome {
+                Ok(Outcome::Accepted { easy }) => {
+                    if easy {
+                        h = (2.0 * h).min(dt);
+                    }
+                    self.substep = h;
+                    if last {
+                        break;
+                    }
                 }
-                alpha *= 0.5;
-                if alpha < 1e-6 {
-                    break false;
+                Ok(Outcome::Rejected) => {
+                    report.rejected_steps += 1;
+                    h = (0.5 * size).max(floor);
                 }
-            };
-            if !accepted {
-                break;
+                Err(error) => {
+                    let (x, v) = (state.positions_mut(), &self.work.v_start);
+                    x.copy_from_slice(&self.work.x_start);
+                    state.velocities_mut().copy_from_slice(v);
+                    state.set_time(start);
+                    return Err(error);
+                }
             }
-            std::mem::swap(&mut w.v, &mut w.trial);
         }
-        report.newton_iterations = report.linear_solves;
-
-        for i in 0..n {
-            w.x[i] = w.x_tilde[i] + beta_h * w.v[i];
-        }
-        state.commit(&mut w.x, &mut w.v, time + dt)?;
-        // The buffers swapped out of the state hold xₙ, vₙ: BDF2's next history.
-        std::mem::swap(&mut w.x_prev, &mut w.x);
-        std::mem::swap(&mut w.v_prev, &mut w.v);
-        self.history.record(system, state, dt);
-        report.contacts = system.end_step(state);
         Ok(report)
     }
 

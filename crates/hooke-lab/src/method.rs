@@ -5,7 +5,7 @@ use std::f64::consts::SQRT_2;
 use std::fmt;
 
 use hooke_core::{Integrator, ParameterError};
-use hooke_implicit::Scheme;
+use hooke_implicit::{Implicit, Scheme};
 use hooke_scenes::{ExplicitMethod, IntegratorSpec, SolverSpec};
 
 /// An integrator the lab can run: one of the ten fixed-step explicit
@@ -161,6 +161,7 @@ impl Method {
                     Scheme::BackwardEuler
                 },
                 solver: settings.solver,
+                linearized: settings.linearized,
                 newton_iterations: settings.newton_iterations,
                 newton_tolerance: settings.newton_tolerance,
             },
@@ -181,22 +182,26 @@ impl fmt::Display for Method {
 pub struct Settings {
     /// The implicit methods' linear solver.
     pub solver: SolverSpec,
-    /// Newton iterations per implicit step (1 = the linearised step).
+    /// Baraff & Witkin's linearised implicit step instead of the converged
+    /// one.
+    pub linearized: bool,
+    /// Cap on Newton iterations per implicit (sub)step.
     pub newton_iterations: usize,
-    /// Newton tolerance, m/s.
+    /// Relative Newton tolerance (see `hooke_implicit::Implicit`).
     pub newton_tolerance: f64,
     /// Dormand–Prince's relative and absolute tolerance.
     pub tolerance: f64,
 }
 
 impl Default for Settings {
-    /// Sparse Cholesky with one Newton iteration (Baraff and Witkin's
-    /// linearised step) and a tolerance of 10⁻⁶.
+    /// Sparse Cholesky with converged Newton steps (the integrator's default
+    /// cap and tolerance) and a Dormand–Prince tolerance of 10⁻⁶.
     fn default() -> Self {
         Self {
             solver: SolverSpec::Cholesky,
-            newton_iterations: 1,
-            newton_tolerance: 1e-3,
+            linearized: false,
+            newton_iterations: Implicit::NEWTON_ITERATIONS,
+            newton_tolerance: Implicit::NEWTON_TOLERANCE,
             tolerance: 1e-6,
         }
     }
@@ -216,11 +221,13 @@ impl Settings {
             },
             IntegratorSpec::Implicit {
                 solver,
+                linearized,
                 newton_iterations,
                 newton_tolerance,
                 ..
             } => Self {
                 solver,
+                linearized,
                 newton_iterations,
                 newton_tolerance,
                 ..defaults

@@ -163,23 +163,26 @@ pub enum IntegratorSpec {
         scheme: Scheme,
         /// The linear solver.
         solver: SolverSpec,
-        /// Newton iterations per step (1 = the linearised step).
+        /// Baraff & Witkin's linearised step instead of the converged one.
+        linearized: bool,
+        /// Cap on Newton iterations per (sub)step.
         newton_iterations: usize,
-        /// Newton tolerance, m/s.
+        /// Relative Newton tolerance `ε` (see `hooke_implicit::Implicit`).
         newton_tolerance: f64,
     },
 }
 
 impl IntegratorSpec {
-    /// Backward Euler with sparse Cholesky and `newton_iterations` Newton
-    /// iterations to 1 mm/s: the defaults for stiff scenes.
+    /// Backward Euler with sparse Cholesky and converged Newton steps at
+    /// the integrator's default cap and tolerance: the default of scenes.
     #[must_use]
-    pub fn backward_euler(newton_iterations: usize) -> Self {
+    pub fn backward_euler() -> Self {
         Self::Implicit {
             scheme: Scheme::BackwardEuler,
             solver: SolverSpec::Cholesky,
-            newton_iterations,
-            newton_tolerance: 1e-3,
+            linearized: false,
+            newton_iterations: Implicit::NEWTON_ITERATIONS,
+            newton_tolerance: Implicit::NEWTON_TOLERANCE,
         }
     }
 
@@ -187,7 +190,7 @@ impl IntegratorSpec {
     ///
     /// ```
     /// use hooke_scenes::IntegratorSpec;
-    /// let integrator = IntegratorSpec::backward_euler(5).build()?;
+    /// let integrator = IntegratorSpec::backward_euler().build()?;
     /// assert_eq!(integrator.name(), "backward-euler");
     /// # Ok::<(), hooke_core::ParameterError>(())
     /// ```
@@ -201,6 +204,7 @@ impl IntegratorSpec {
             Self::Implicit {
                 scheme,
                 solver,
+                linearized,
                 newton_iterations,
                 newton_tolerance,
             } => {
@@ -211,11 +215,14 @@ impl IntegratorSpec {
                     } => LinearSolver::Pcg(PcgSettings::new(tolerance, max_iterations)?),
                     SolverSpec::Cholesky => LinearSolver::Cholesky,
                 };
-                Box::new(
-                    Implicit::new(scheme)
-                        .with_solver(solver)
-                        .with_newton(newton_iterations, newton_tolerance)?,
-                )
+                let implicit = Implicit::new(scheme)
+                    .with_solver(solver)
+                    .with_newton(newton_iterations, newton_tolerance)?;
+                Box::new(if linearized {
+                    implicit.linearized()
+                } else {
+                    implicit
+                })
             }
         })
     }

@@ -172,6 +172,7 @@ fn a_cloth_file_says_what_the_scene_holds() {
         scene.integrator,
         IntegratorSpec::Implicit {
             scheme: Scheme::Bdf2,
+            linearized: false,
             solver: SolverSpec::Pcg {
                 tolerance: 1e-7,
                 max_iterations: 300
@@ -201,7 +202,7 @@ fn a_cloth_file_says_what_the_scene_holds() {
 #[test]
 fn defaults_are_backward_euler_cholesky_one_newton_iteration() {
     let scene = parse(CLOTH).unwrap();
-    assert_eq!(scene.integrator, IntegratorSpec::backward_euler(1));
+    assert_eq!(scene.integrator, IntegratorSpec::backward_euler());
     assert!((scene.timing.frame_rate - 60.0).abs() < 1e-12);
     assert_eq!(scene.name, "test");
     assert_eq!(scene.system.particle_count(), 12);

@@ -3,7 +3,7 @@
 
 use std::ops::Range;
 
-use hooke_implicit::Scheme;
+use hooke_implicit::{Implicit, Scheme};
 use toml::Spanned;
 
 use super::error::{ErrorKind, SceneFileError, Source};
@@ -59,7 +59,7 @@ pub(crate) fn timing(
     Ok(timing)
 }
 
-/// The integrator: backward Euler with Cholesky and one Newton iteration
+/// The integrator: backward Euler with Cholesky and converged Newton steps
 /// unless the table says otherwise. Keys that do not apply to the chosen
 /// method or solver are errors.
 pub(crate) fn integrator(
@@ -67,7 +67,7 @@ pub(crate) fn integrator(
     table: Option<&Spanned<IntegratorTable>>,
 ) -> Result<IntegratorSpec, SceneFileError> {
     let Some(table) = table else {
-        return Ok(IntegratorSpec::backward_euler(1));
+        return Ok(IntegratorSpec::backward_euler());
     };
     let t = table.get_ref();
     let method = t
@@ -84,6 +84,7 @@ pub(crate) fn integrator(
     };
     let implicit_only = [
         ("solver", t.solver.as_ref().map(Spanned::span)),
+        ("step", t.step.as_ref().map(Spanned::span)),
         (
             "newton_iterations",
             t.newton_iterations.as_ref().map(Spanned::span),
@@ -134,11 +135,30 @@ pub(crate) fn integrator(
                 ));
             }
         };
+        let linearized = match t.step.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
+            None | Some(("converged", _)) => false,
+            Some(("linearized", _)) => true,
+            Some((other, span)) => {
+                return Err(src.invalid(
+                    span,
+                    "integrator.step",
+                    format!("\"{other}\""),
+                    "\"converged\" or \"linearized\"",
+                ));
+            }
+        };
         IntegratorSpec::Implicit {
             scheme,
             solver,
-            newton_iterations: t.newton_iterations.as_ref().map_or(1, |v| *v.get_ref()),
-            newton_tolerance: t.newton_tolerance.as_ref().map_or(1e-3, |v| *v.get_ref()),
+            linearized,
+            newton_iterations: t
+                .newton_iterations
+                .as_ref()
+                .map_or(Implicit::NEWTON_ITERATIONS, |v| *v.get_ref()),
+            newton_tolerance: t
+                .newton_tolerance
+                .as_ref()
+                .map_or(Implicit::NEWTON_TOLERANCE, |v| *v.get_ref()),
         }
     } else if method == "dormand-prince" {
         reject(&implicit_only, "methods \"backward-euler\" and \"bdf2\"")?;

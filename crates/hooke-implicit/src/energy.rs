@@ -1,0 +1,101 @@
+//! The energy test of an implicit step: the mechanical energy of the free
+//! particles and the springs, and the work external agents did on them.
+//!
+//! With `E = Σ_free ½ mᵢ|vᵢ|² − Σ_free mᵢ g·xᵢ + Σ_s ½ k (l − L)²` (gravity is
+//! part of the potential), the exact motion obeys `E(t + h) ≤ E(t) + W`,
+//! where `W` is the work that scripted pins and moving obstacles did on the
+//! system during the step; dampers and friction only remove energy. A
+//! step is accepted when
+//!
+//! ```text
+//! E(xₙ₊₁, vₙ₊₁) ≤ E(xₙ, vₙ) + W + 10³ ε |E|,
+//! ```
+//!
+//! with `|E|` the sum of the terms' magnitudes and `ε` the machine epsilon:
+//! the rounding of the sums, nothing more. `W` is estimated by the
+//! trapezoid rule for pins, `½(∇ₚV(xₙ) + ∇ₚV(xₙ₊₁))·(xₚ,ₙ₊₁ − xₚ,ₙ)`, and as
+//! the contact impulse times the obstacle's velocity for moving obstacles;
+//! it is zero in the common case of fixed pins and resting obstacles.
+
+use hooke_core::{System, Vec3};
+
+/// The step's energy `E(x, v)` and the sum of its terms' magnitudes.
+pub(crate) fn energy(system: &System, x: &[Vec3], v: &[Vec3]) -> (f64, f64) {
+    let g = system.gravity().unwrap_or_else(Vec3::zeros);
+    let (mut value, mut magnitude) = (0.0, 0.0);
+    for (i, &m) in system.masses().iter().enumerate() {
+        if system.is_pinned(i) {
+            continue;
+        }
+        let kinetic = 0.5 * m * v[i].norm_squared();
+        let gravitational = -m * g.dot(&x[i]);
+        value += kinetic + gravitational;
+        magnitude += kinetic + gravitational.abs();
+    }
+    for s in system.springs() {
+        let e = s.energy(x[s.i], x[s.j]);
+        value += e;
+        magnitude += e;
+    }
+    (value, magnitude)
+}
+
+/// The largest gain `E(x₁, v₁) − E(x₀, v₀)` a step may show from rounding.
+pub(crate) fn rounding(magnitude: f64) -> f64 {
+    1e3 * f64::EPSILON * magnitude
+}
+
+/// The work scripted pins did on the system over a step from `x0` to `x1`,
+/// by the trapezoid rule on the springs attached to them.
+pub(crate) fn pin_work(system: &System, x0: &[Vec3], x1: &[Vec3]) -> f64 {
+    if system.pin_paths().is_empty() {
+        return 0.0;
+    }
+    let mut work = 0.0;
+    for s in system.springs() {
+        for (p, q, sign) in [(s.i, s.j, 1.0), (s.j, s.i, -1.0)] {
+            if !system.pin_paths().iter().any(|(i, _)| *i == p) {
+                continue;
+            }
+            // ∇ₚV is minus the elastic force on p.
+            let (a, b) = if sign > 0.0 { (p, q) } else { (q, p) };
+            let f0 = sign * s.elastic_force(x0[a], x0[b]);
+            let f1 = sign * s.elastic_force(x1[a], x1[b]);
+            work -= 0.5 * (f0 + f1).dot(&(x1[p] - x0[p]));
+        }
+    }
+    work
+}
+
+/// The work moving obstacles did on the particles they held, `Σ Jᵢ·uᵢ`
+/// over `held = (i, uᵢ)`, with the contact impulse
+/// `Jᵢ = mᵢ(vᵢ − ṽᵢ) − βh fᵢ(x, v)` that the step's equations leave on a
+/// held particle. `force` is scratch of one entry per particle.
+pub(crate) fn obstacle_work(
+    system: &System,
+    held: impl Iterator<Item = (usize, Vec3)> + Clone,
+    x: &[Vec3],
+    v: &[Vec3],
+    v_tilde: &[Vec3],
+    beta_h: f64,
+    force: &mut [Vec3],
+) -> f64 {
+    if held.clone().all(|(_, u)| u == Vec3::zeros()) {
+        return 0.0;
+    }
+    let g = system.gravity().unwrap_or_else(Vec3::zeros);
+    let gamma = system.air_damping().unwrap_or(0.0);
+    for (i, f) in force.iter_mut().enumerate() {
+        *f = system.masses()[i] * g - gamma * v[i];
+    }
+    for s in system.springs() {
+        let f = s.force(x[s.i], x[s.j], v[s.i], v[s.j]);
+        force[s.i] += f;
+        force[s.j] -= f;
+    }
+    held.map(|(i, u)| {
+        let impulse = system.masses()[i] * (v[i] - v_tilde[i]) - beta_h * force[i];
+        impulse.dot(&u)
+    })
+    .sum()
+}
