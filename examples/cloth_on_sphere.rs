@@ -29,9 +29,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .obstacle(ball.clone());
     let system = b.build()?;
 
-    let mut integrator = Implicit::backward_euler()
-        .with_solver(LinearSolver::Cholesky)
-        .with_newton(4, 1e-4)?;
+    let mut integrator = Implicit::backward_euler();
     let mut state = system.initial_state();
     let dt = 1.0 / 60.0;
     println!("  t (s)   kinetic (J)   lowest (m)   deepest (m)   contacts");

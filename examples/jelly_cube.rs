@@ -30,9 +30,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     b.gravity([0.0, -9.81, 0.0]).obstacle(floor);
     let system = b.build()?;
 
-    let mut integrator = Implicit::backward_euler()
-        .with_solver(LinearSolver::Cholesky)
-        .with_newton(4, 1e-5)?;
+    let mut integrator = Implicit::backward_euler();
     let mut state = system.initial_state();
     let dt = 1.0 / 240.0;
     println!(

@@ -20,9 +20,7 @@ fn main() -> Result<(), Error> {
     // least 2k/m, so ω_max ≥ √(2k/m) and every explicit method's stable step,
     // at most 2√2/ω_max (RK4), is below 2√2·√(m/2k) = 2√(m/k).
     let explicit_limit = 2.0 * (particle_mass / stiffness).sqrt();
-    let mut integrator = Implicit::backward_euler()
-        .with_solver(LinearSolver::Cholesky)
-        .with_newton(5, 1e-3)?;
+    let mut integrator = Implicit::backward_euler();
     let mut state = system.initial_state();
     let mut energy = EnergyLog::default();
     let mut strain = StrainLog::default();

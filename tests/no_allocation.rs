@@ -54,24 +54,24 @@ fn steady_state_work_does_not_allocate() {
 }
 
 /// Assembly, PCG and Cholesky (faer's numeric factorization and solve run in
-/// storage allocated with the symbolic analysis), with and without Newton
-/// iterations.
+/// storage allocated with the symbolic analysis), converged and linearised
+/// steps, and error-controlled substeps.
 fn implicit_steps_do_not_allocate() {
-    use hooke::implicit::{Implicit, LinearSolver};
+    use hooke::implicit::{ErrorControl, Implicit, LinearSolver, PcgSettings};
     let system = Sheet {
         damping: 0.05,
         ..Sheet::new(12)
     }
     .system()
     .unwrap();
+    let pcg = LinearSolver::Pcg(PcgSettings::default());
     let integrators = [
         Implicit::backward_euler(),
-        Implicit::backward_euler().with_solver(LinearSolver::Cholesky),
-        Implicit::bdf2().with_newton(3, 1e-9).unwrap(),
-        Implicit::bdf2()
-            .with_solver(LinearSolver::Cholesky)
-            .with_newton(3, 1e-9)
-            .unwrap(),
+        Implicit::backward_euler().with_solver(pcg),
+        Implicit::backward_euler().linearized(),
+        Implicit::bdf2(),
+        Implicit::bdf2().with_solver(pcg),
+        Implicit::bdf2().with_error_control(ErrorControl::new(1e-3, 1e-6).unwrap()),
     ];
     for mut integrator in integrators {
         let mut state = system.initial_state();
@@ -93,17 +93,25 @@ fn implicit_steps_do_not_allocate() {
 }
 
 /// Above `PARALLEL_MIN_PARTICLES` assembly, products and vector operations
-/// run on rayon, still without allocating.
+/// run on rayon, still without allocating (PCG here: faer's parallel
+/// sparse Cholesky allocates its task tree in every factorization). The
+/// step runs on a worker of a rayon pool, as it does inside any parallel
+/// application: a parallel call from outside the pool pushes its job onto
+/// the pool's injector queue, which allocates a block per 63 jobs.
 #[cfg(feature = "parallel")]
 fn parallel_implicit_steps_do_not_allocate() {
-    use hooke::implicit::{Implicit, PARALLEL_MIN_PARTICLES};
+    use hooke::implicit::{Implicit, LinearSolver, PARALLEL_MIN_PARTICLES, PcgSettings};
     let side = (PARALLEL_MIN_PARTICLES as f64).sqrt().ceil() as usize;
     let system = Sheet::new(side).system().unwrap();
-    let mut integrator = Implicit::backward_euler();
+    let mut integrator =
+        Implicit::backward_euler().with_solver(LinearSolver::Pcg(PcgSettings::default()));
     let mut state = system.initial_state();
-    integrator.step(&system, &mut state, 1e-4).unwrap();
-    let allocations = allocations_during(|| {
+    let pool = rayon::ThreadPoolBuilder::new().build().unwrap();
+    let allocations = pool.install(|| {
         integrator.step(&system, &mut state, 1e-4).unwrap();
+        allocations_during(|| {
+            integrator.step(&system, &mut state, 1e-4).unwrap();
+        })
     });
     assert_eq!(
         allocations, 0,

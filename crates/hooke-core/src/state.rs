@@ -204,6 +204,15 @@ impl History {
             .then(|| f64::from_bits(last.dt_bits))
     }
 
+    /// Whether the previous step on `system` produced `state` (what
+    /// [`History::take`] would find), without forgetting it.
+    #[must_use]
+    pub fn continues(&self, system: &System, state: &State) -> bool {
+        self.last.is_some_and(|last| {
+            last.system == system.id() && last.state == state.id && last.version == state.version
+        })
+    }
+
     /// Like [`History::take`], for integrators whose history only holds for
     /// the same step size: whether the previous step produced `state` on
     /// `system` with size `dt` too.

@@ -40,7 +40,16 @@ use crate::block::SymBlock;
 use crate::cg::BlockJacobi;
 use crate::matrix::BlockMatrix;
 use crate::pattern::Pattern;
-use crate::vector::{for_each_row, for_each_row3, spring_chunks, sum};
+use crate::vector::{for_each_row, for_each_row3, spring_chunks, sum2};
+
+/// The incremental potential at a point and its rounding level.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Potential {
+    /// `Φ`.
+    pub(crate) value: f64,
+    /// How far rounding alone may move `Φ`, in J.
+    pub(crate) rounding: f64,
+}
 
 /// Where and how to linearise.
 #[derive(Debug, Clone, Copy)]
@@ -273,15 +282,19 @@ impl Assembler {
         }
     }
 
-    /// The incremental potential whose gradient in `v` is the residual of the
-    /// step,
+    /// The incremental potential whose gradient in `v` is minus the
+    /// residual of the step,
     ///
     /// ```text
     /// Φ(v) = ½ Σ mᵢ|vᵢ − ṽᵢ|² + V(x̃ + βh v) + ½βh [Σ_s c_s (d_s·(vᵢ − vⱼ))² + γ Σ |vᵢ|²]
     /// ```
     ///
     /// with `V` the spring and gravitational potential and `d_s` the frozen
-    /// damping directions; `x` must hold `x̃ + βh v`.
+    /// damping directions; `x` must hold `x̃ + βh v`. Also returns the
+    /// rounding level of `Φ`: `ε` times the sum of its terms' magnitudes,
+    /// plus each spring's `k |l − L| ε (|xᵢ| + |xⱼ|)` — the energy that the
+    /// rounding of its ends' coordinates alone puts into `½k(l − L)²`, which
+    /// dominates for stiff springs.
     pub(crate) fn potential(
         &self,
         system: &System,
@@ -290,24 +303,35 @@ impl Assembler {
         v: &[Vec3],
         v_tilde: &[Vec3],
         beta_h: f64,
-    ) -> f64 {
+    ) -> Potential {
         let masses = system.masses();
         let g = system.gravity().unwrap_or_else(Vec3::zeros);
         let gamma = system.air_damping().unwrap_or(0.0);
-        let particles = sum(x.len(), |i| {
+        let (particles, particles_magnitude) = sum2(x.len(), |i| {
             let m = masses[i];
-            0.5 * m * (v[i] - v_tilde[i]).norm_squared() - m * g.dot(&x[i])
-                + 0.5 * beta_h * gamma * v[i].norm_squared()
+            let inertia = 0.5 * m * (v[i] - v_tilde[i]).norm_squared();
+            let gravitational = -m * g.dot(&x[i]);
+            let air = 0.5 * beta_h * gamma * v[i].norm_squared();
+            (
+                inertia + gravitational + air,
+                inertia + gravitational.abs() + air,
+            )
         });
-        let springs = sum(pattern.slots(), |t| {
+        let (springs, springs_rounding) = sum2(pattern.slots(), |t| {
             let s = &system.springs()[pattern.spring(t)];
-            let mut e = s.energy(x[s.i], x[s.j]);
+            let (xi, xj) = (x[s.i], x[s.j]);
+            let mut e = s.energy(xi, xj);
+            let rounding =
+                s.stiffness * ((xi - xj).norm() - s.rest_length).abs() * (xi.amax() + xj.amax());
             if s.damping > 0.0 {
                 let rate = self.directions[t].dot(&(v[s.i] - v[s.j]));
                 e += 0.5 * beta_h * s.damping * rate * rate;
             }
-            e
+            (e, e + rounding)
         });
-        particles + springs
+        Potential {
+            value: particles + springs,
+            rounding: f64::EPSILON * (particles_magnitude + springs_rounding),
+        }
     }
 }

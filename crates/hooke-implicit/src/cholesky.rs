@@ -121,15 +121,15 @@ impl SparseCholesky {
     /// Solves `(S A S + I − S) x = S b`, the filtered system, into `x`.
     ///
     /// # Errors
-    /// The particle of the first non-positive pivot if the filtered matrix is
-    /// not positive definite.
+    /// If the filtered matrix is not positive definite: the particle of the
+    /// first non-positive pivot, where the factorization names one.
     pub fn solve(
         &mut self,
         a: &BlockMatrix,
         filters: &[Filter],
         b: &[Vec3],
         x: &mut [Vec3],
-    ) -> Result<(), usize> {
+    ) -> Result<(), Option<usize>> {
         self.fill(a, filters);
         let dofs = self.rhs.len();
         let pattern =
@@ -148,11 +148,11 @@ impl SparseCholesky {
             )
             .map_err(
                 |faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }| {
-                    let dof = self
-                        .symbolic
-                        .perm()
-                        .map_or(index, |p| p.arrays().0[index] as usize);
-                    dof / 3
+                    let dof = match self.symbolic.perm() {
+                        Some(p) => p.arrays().0.get(index).map(|&d| d as usize),
+                        None => Some(index),
+                    };
+                    dof.filter(|&d| d < dofs).map(|d| d / 3)
                 },
             )?;
         for (i, (bi, f)) in b.iter().zip(filters).enumerate() {

@@ -206,6 +206,62 @@ impl Contacts {
         any
     }
 
+    /// After Newton's iteration on a step of `h` from `x0`, `v0` at `time`
+    /// ended at velocities `v` and positions `x`: holds every free particle
+    /// that ends the step inside an obstacle as [`Contacts::begin`] holds an
+    /// arriving one — its normal velocity, in `v` too, set so that it lands
+    /// on the surface (or stays where it is, if it started inside) — and
+    /// returns how many it held. The step's iteration then goes on.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn hold_penetrating(
+        &mut self,
+        system: &System,
+        (x0, v0): (&[Vec3], &[Vec3]),
+        x: &[Vec3],
+        v: &mut [Vec3],
+        time: f64,
+        h: f64,
+        filters: &mut [Filter],
+    ) -> usize {
+        let mut held = 0;
+        for i in 0..x.len() {
+            if system.is_pinned(i) || self.active[i].is_some() {
+                continue;
+            }
+            let deepest = system
+                .obstacles()
+                .iter()
+                .map(|o| o.distance(x[i], time + h).0)
+                .enumerate()
+                .filter(|&(_, depth)| depth < 0.0)
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            let Some((k, _)) = deepest else {
+                continue;
+            };
+            let obstacle = &system.obstacles()[k];
+            let (phi, normal) = obstacle.distance(x0[i], time);
+            let velocity = obstacle.velocity(time);
+            let relative = if phi > 0.0 {
+                self.impact[i] = -(v0[i] - velocity).dot(&normal);
+                -phi / h
+            } else {
+                0.0
+            };
+            let target = velocity.dot(&normal) + relative;
+            self.prescribed[i] = (target - v0[i].dot(&normal)) * normal;
+            v[i] += (target - v[i].dot(&normal)) * normal;
+            filters[i] = Filter::Plane(normal);
+            self.active[i] = Some(Active {
+                normal,
+                velocity,
+                friction: obstacle.friction,
+            });
+            self.released[i] = false;
+            held += 1;
+        }
+        held
+    }
+
     /// The particles held by obstacles in the present step, with the
     /// obstacles' velocities.
     pub(crate) fn held(&self) -> impl Iterator<Item = (usize, Vec3)> + Clone + '_ {

@@ -98,23 +98,28 @@
 //! ```
 
 mod assembly;
+mod attempt;
 mod block;
 pub mod cg;
 mod cholesky;
+mod conditioning;
 mod contact;
 mod energy;
+pub mod error_control;
 mod filter;
 mod implicit;
 mod matrix;
 mod newton;
 mod pattern;
 mod solver;
+mod step;
 mod vector;
 
 pub use assembly::{Assembler, Linearization};
 pub use block::SymBlock;
 pub use cg::{BlockJacobi, PcgSettings};
 pub use cholesky::SparseCholesky;
+pub use error_control::ErrorControl;
 pub use filter::Filter;
 pub use implicit::{Implicit, Scheme};
 pub use matrix::BlockMatrix;

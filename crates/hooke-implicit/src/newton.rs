@@ -1,341 +1,319 @@
-//! One attempt at an implicit (sub)step: the scheme's coefficients, the
-//! linearised solve or Newton's method with its line search, the energy
-//! test, and the commit of an accepted step. [`Implicit`]'s docs give the
-//! equations.
+//! Newton's method on the incremental potential `Φ` of one implicit
+//! (sub)step, with its line search; [`Implicit`](crate::Implicit)'s docs give
+//! the equations.
 
-use hooke_core::{CompressedSprings, State, StepError, StepReport, System, Vec3};
+use hooke_core::{CompressedSprings, StepError, StepReport, System, Vec3};
 
-use crate::assembly::Linearization;
-use crate::energy::{energy, obstacle_work, pin_work, rounding};
-use crate::implicit::{Implicit, Scheme};
-use crate::solver::{Solve, topology};
+use crate::assembly::{Assembler, Linearization, Potential};
+use crate::contact::Contacts;
+use crate::solver::{Solve, Topology};
 use crate::vector::{dot, for_each_row, for_each_row2};
 
-/// What became of an attempt.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Outcome {
-    /// Committed to the state; `easy` when Newton took at most a third of
-    /// its cap, so the next substep may be longer.
-    Accepted { easy: bool },
-    /// Not converged or gaining energy above the floor: the state, the
-    /// contacts and the history are as before.
-    Rejected,
-}
+/// The sufficient-decrease constant `c` of the Armijo condition
+/// `Φ(v + αδ) ≤ Φ(v) + c α ∇Φ·δ`.
+const ARMIJO: f64 = 1e-4;
 
-/// How Newton's method ended.
-struct Newton {
-    converged: bool,
-    iterations: usize,
-    /// The last step `‖δ‖∞` relative to the step's velocity scale.
-    residual: f64,
-}
+/// The longest multiple of a Newton step the line search tries.
+const MAX_EXTRAPOLATION: f64 = 64.0;
 
 /// The shortest fraction of a Newton step the line search tries.
 const MIN_STEP: f64 = 1e-6;
 
-impl Implicit {
-    /// Attempts a step of `h` from `state`, ending at `end` (or `t + h`).
-    /// `at_floor` accepts the step whatever its convergence and energy (the
-    /// last resort then applies).
+/// How Newton's method ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Outcome {
+    /// Whether the iterate meets the stopping rule.
+    pub(crate) converged: bool,
+    /// Linear solves taken (look-ahead steps included).
+    pub(crate) iterations: usize,
+    /// The last relative Newton decrement ([`Newton::decrement`]).
+    pub(crate) residual: f64,
+}
+
+/// The iteration buffers: the iterate, its Newton step, a trial point, and
+/// the look-ahead step and point of the watchdog.
+pub(crate) struct Iterates<'a> {
+    pub(crate) v: &'a mut Vec<Vec3>,
+    pub(crate) delta: &'a mut Vec<Vec3>,
+    pub(crate) trial: &'a mut Vec<Vec3>,
+    pub(crate) ahead: &'a mut Vec<Vec3>,
+    pub(crate) look: &'a mut Vec<Vec3>,
+}
+
+/// What one (sub)step's Newton iterations share: the step's predictor
+/// `x = x̃ + βh v` and `ṽ`, the linear solver and its topology, the
+/// contacts, and scratch for positions, the inertia term and the
+/// right-hand side.
+pub(crate) struct Newton<'a> {
+    pub(crate) system: &'a System,
+    pub(crate) solve: Solve<'a>,
+    pub(crate) topology: &'a mut Topology,
+    pub(crate) assembler: &'a mut Assembler,
+    pub(crate) contacts: &'a mut Contacts,
+    pub(crate) constrained: bool,
+    pub(crate) compressed: CompressedSprings,
+    pub(crate) x_tilde: &'a [Vec3],
+    pub(crate) v_tilde: &'a [Vec3],
+    pub(crate) beta_h: f64,
+    pub(crate) x: &'a mut [Vec3],
+    pub(crate) inertia: &'a mut [Vec3],
+    pub(crate) b: &'a mut [Vec3],
+    pub(crate) pcg: &'a mut crate::cg::PcgWorkspace,
+    pub(crate) report: &'a mut StepReport,
+}
+
+impl Newton<'_> {
+    /// Fills the position scratch with `x = x̃ + βh v`.
+    pub(crate) fn positions(&mut self, v: &[Vec3]) {
+        let (x_tilde, beta_h) = (self.x_tilde, self.beta_h);
+        for_each_row(self.x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
+    }
+
+    /// Holds the particles that the positions in the scratch put inside an
+    /// obstacle ([`Contacts::hold_penetrating`]), setting their normal
+    /// velocities in `v`; returns how many.
+    pub(crate) fn hold_penetrating(
+        &mut self,
+        start: (&[Vec3], &[Vec3]),
+        v: &mut [Vec3],
+        time: f64,
+        h: f64,
+    ) -> usize {
+        let filters = self.topology.matrix_and_filters_mut().1;
+        let held = self
+            .contacts
+            .hold_penetrating(self.system, start, self.x, v, time, h, filters);
+        if held > 0 {
+            self.constrained = true;
+        }
+        held
+    }
+
+    /// `Φ(v) + D(v)` (the friction's dissipation potential with the bounds of
+    /// the last solve) and its rounding level.
+    pub(crate) fn potential(&mut self, v: &[Vec3]) -> Potential {
+        self.positions(v);
+        let beta_h = self.beta_h;
+        let mut potential = self.assembler.potential(
+            self.system,
+            self.topology.pattern(),
+            self.x,
+            v,
+            self.v_tilde,
+            beta_h,
+        );
+        if self.constrained {
+            potential.value += self.contacts.dissipation(v);
+        }
+        potential
+    }
+
+    /// The Newton decrement `λ = √|∇Φ·δ|` relative to the step's velocity
+    /// scale in the mass norm `‖u‖_M = √(Σ mᵢ|uᵢ|²)`,
+    ///
+    /// ```text
+    /// λ / max(‖v + δ − v₀‖_M, ‖v + δ‖_M, βh‖g‖ √(Σ mᵢ)),
+    /// ```
+    ///
+    /// the last term the velocity gravity gives in one step, so that a body
+    /// at rest has a scale too.
+    ///
+    /// zero for `δ = 0`. As `λ² = δᵀ A δ ≥ ‖δ‖²_M`, it bounds the relative
+    /// error of the velocities in the mass norm, and `λ²/2` estimates how
+    /// far `Φ` is above its minimum.
+    fn decrement(&self, slope: f64, v: &[Vec3], delta: &[Vec3], v0: &[Vec3]) -> f64 {
+        if slope == 0.0 {
+            return 0.0;
+        }
+        let masses = self.system.masses();
+        let (mut change, mut speed, mut total) = (0.0, 0.0, 0.0);
+        for (i, ((v, d), v0)) in v.iter().zip(delta).zip(v0).enumerate() {
+            let next = v + d;
+            change += masses[i] * (next - v0).norm_squared();
+            speed += masses[i] * next.norm_squared();
+            total += masses[i];
+        }
+        let gravity = self.system.gravity().map_or(0.0, |g| g.norm());
+        let h = self.beta_h;
+        let scale = change.max(speed).max(total * (h * gravity).powi(2)).sqrt();
+        slope.abs().sqrt() / scale
+    }
+
+    /// Newton's step `δ` at `v`: assembles `(M + βh C + β²h² K) δ = −∇Φ(v)`
+    /// with the exact stiffness blocks, or — where that system is not
+    /// positive definite or its solution does not descend, and the
+    /// integrator clamps compressed springs — with compressed springs
+    /// clamped, and solves it in the free directions. After a step
+    /// of the iteration (not a look-ahead) the contacts whose constraints
+    /// pull are released. Returns the slope `∇Φ·δ`.
     ///
     /// # Errors
-    /// Assembly and solver errors; [`StepError::NoConvergence`] in strict
-    /// mode for a step accepted at the floor without converging.
-    pub(crate) fn attempt(
+    /// Assembly and solver errors.
+    fn direction(
         &mut self,
-        system: &System,
-        state: &mut State,
-        h: f64,
-        end: Option<f64>,
-        at_floor: bool,
-        report: &mut StepReport,
-    ) -> Result<Outcome, StepError> {
-        let saved_history = self.history;
-        let previous = self.history.take(system, state);
-        let time = state.time();
-        let (x0, v0) = (state.positions(), state.velocities());
-        // Variable-step BDF2 with step ratio ω = h/hₙ₋₁:
-        // x − (1+ω)²/(1+2ω) xₙ + ω²/(1+2ω) xₙ₋₁ = (1+ω)/(1+2ω) h v; it
-        // (re)starts with a backward-Euler step.
-        let ratio = previous
-            .map(|last| h / last)
-            .filter(|&omega| self.scheme == Scheme::Bdf2 && omega <= 2.0 + 1e-9);
-        let (beta, current, past) = ratio.map_or((1.0, 1.0, 0.0), |omega| {
-            let d = 1.0 + 2.0 * omega;
-            (
-                (1.0 + omega) / d,
-                (1.0 + omega).powi(2) / d,
-                omega * omega / d,
-            )
-        });
-        let beta_h = beta * h;
+        v: &[Vec3],
+        delta: &mut [Vec3],
+        release: bool,
+    ) -> Result<f64, StepError> {
+        let (system, x_tilde, v_tilde, beta_h) =
+            (self.system, self.x_tilde, self.v_tilde, self.beta_h);
         let masses = system.masses();
-        let w = &mut self.work;
-        for i in 0..x0.len() {
-            w.x_tilde[i] = current * x0[i] - past * w.x_prev[i];
-            w.v_tilde[i] = current * v0[i] - past * w.v_prev[i];
-            w.u[i] = w.x_tilde[i] - x0[i] + beta_h * v0[i];
-            w.inertia[i] = masses[i] * (w.v_tilde[i] - v0[i]);
-        }
-        if previous.is_none() {
-            w.dv.fill(Vec3::zeros());
-        }
-        self.saved_contacts.clone_from(&self.contacts);
-
-        let (compressed, solver, strict) = (self.compressed, self.solver, self.strict);
-        let topology = topology(&mut self.topology, solver, system)?;
-        let solve = Solve {
-            system,
-            solver,
-            strict,
-            time,
-        };
-        let contacts = &mut self.contacts;
-        let constrained = (!system.obstacles().is_empty() || !system.pin_paths().is_empty())
-            && contacts.begin(
-                system,
-                x0,
-                v0,
-                state.touching(),
-                time,
-                h,
-                self.contact_margin,
-                topology.matrix_and_filters_mut().1,
-            );
-        // Baraff & Witkin's linearised step: the whole step when linearised,
-        // otherwise the first candidate for Newton's starting point.
-        let lin = Linearization {
-            positions: x0,
-            velocities: v0,
-            displacement: Some(&w.u),
-            inertia: &w.inertia,
-            beta_h,
-            compressed,
-            freeze_directions: true,
-        };
-        solve.assemble(&mut self.assembler, topology, &lin, &mut w.b)?;
-        if constrained {
-            contacts.prescribe(topology.matrix(), &mut w.b);
-            contacts.add_friction(topology, v0, &mut w.b);
-        }
-        solve.solve(topology, &w.b, &mut w.dv, &mut w.pcg, report)?;
-        let prescribed = &contacts.prescribed;
-        let z = |i: usize| {
-            if constrained {
-                prescribed[i]
-            } else {
-                Vec3::zeros()
-            }
-        };
-        for_each_row(&mut w.v, |i, v| *v = v0[i] + w.dv[i] + z(i));
-        let newton = if self.linearized {
-            if constrained {
-                let (matrix, filters) = topology.matrix_and_filters_mut();
-                contacts.release(matrix, &w.dv, &w.b, filters);
-            }
-            Newton {
-                converged: true,
-                iterations: 1,
-                residual: 0.0,
-            }
-        } else {
-            // Newton starts where Φ is lower: at the linearised step's
-            // velocities or at vₙ with the prescribed velocity changes
-            // applied. Every Newton step then lies in the free directions.
-            for_each_row2(&mut w.x, &mut w.trial, |i, x, t| {
-                *t = v0[i] + z(i);
-                *x = w.x_tilde[i] + beta_h * *t;
-            });
-            let at_start = self.assembler.potential(
-                system,
-                topology.pattern(),
-                &w.x,
-                &w.trial,
-                &w.v_tilde,
+        for_each_row2(self.x, self.inertia, |i, x, inertia| {
+            *x = x_tilde[i] + beta_h * v[i];
+            *inertia = -masses[i] * (v[i] - v_tilde[i]);
+        });
+        let mut hessian = CompressedSprings::Exact;
+        loop {
+            let lin = Linearization {
+                positions: self.x,
+                velocities: v,
+                displacement: None,
+                inertia: self.inertia,
                 beta_h,
-            );
-            for_each_row(&mut w.x, |i, x| *x = w.x_tilde[i] + beta_h * w.v[i]);
-            let linearized = self.assembler.potential(
-                system,
-                topology.pattern(),
-                &w.x,
-                &w.v,
-                &w.v_tilde,
-                beta_h,
-            );
-            if !(linearized < at_start) {
-                std::mem::swap(&mut w.v, &mut w.trial);
-            }
-            let mut newton = Newton {
-                converged: false,
-                iterations: 0,
-                residual: f64::INFINITY,
+                compressed: hessian,
+                freeze_directions: false,
             };
-            for _ in 0..self.newton_iterations {
-                for_each_row2(&mut w.x, &mut w.inertia, |i, x, inertia| {
-                    *x = w.x_tilde[i] + beta_h * w.v[i];
-                    *inertia = -masses[i] * (w.v[i] - w.v_tilde[i]);
+            delta.fill(Vec3::zeros());
+            let last = hessian == self.compressed;
+            let solved = self
+                .solve
+                .assemble(self.assembler, self.topology, &lin, self.b)
+                .and_then(|()| {
+                    if self.constrained {
+                        self.contacts.add_friction(self.topology, v, self.b);
+                    }
+                    self.solve
+                        .solve(self.topology, self.b, delta, self.pcg, self.report)
                 });
-                // The exact Hessian where the system it gives is positive
-                // definite (quadratic convergence), the clamped one otherwise.
-                // The exact Hessian where the system it gives is positive
-                // definite (quadratic convergence), the clamped one otherwise.
-                let tries: &[CompressedSprings] = match compressed {
-                    CompressedSprings::Clamped => {
-                        &[CompressedSprings::Exact, CompressedSprings::Clamped]
-                    }
-                    CompressedSprings::Exact => &[CompressedSprings::Exact],
-                };
-                for (t, &hessian) in tries.iter().enumerate() {
-                    let lin = Linearization {
-                        positions: &w.x,
-                        velocities: &w.v,
-                        displacement: None,
-                        inertia: &w.inertia,
-                        beta_h,
-                        compressed: hessian,
-                        freeze_directions: false,
-                    };
-                    w.delta.fill(Vec3::zeros());
-                    let last = t + 1 == tries.len();
-                    let solved = solve
-                        .assemble(&mut self.assembler, topology, &lin, &mut w.b)
-                        .and_then(|()| {
-                            if constrained {
-                                contacts.add_friction(topology, &w.v, &mut w.b);
-                            }
-                            solve.solve(topology, &w.b, &mut w.delta, &mut w.pcg, report)
-                        });
-                    match solved {
-                        Err(StepError::NotPositiveDefinite { .. }) if !last => continue,
-                        Err(e) => return Err(e),
-                        // A direction that does not descend is retried clamped.
-                        Ok(()) if !last && dot(&w.b, &w.delta) <= 0.0 => continue,
-                        Ok(()) => break,
-                    }
-                }
-                if constrained {
-                    let (matrix, filters) = topology.matrix_and_filters_mut();
-                    contacts.release(matrix, &w.delta, &w.b, filters);
-                }
-                newton.iterations += 1;
-                let (mut step, mut scale) = (0.0_f64, 0.0_f64);
-                for i in 0..w.v.len() {
-                    let next = w.v[i] + w.delta[i];
-                    step = step.max(w.delta[i].amax());
-                    scale = scale.max((next - v0[i]).amax()).max(next.amax());
-                }
-                newton.residual = if step > 0.0 { step / scale } else { 0.0 };
-                if step <= self.newton_tolerance * scale {
-                    for_each_row(&mut w.v, |i, v| *v += w.delta[i]);
-                    newton.converged = true;
-                    break;
-                }
-                // Backtracking (Armijo) on Φ along δ; the slope is ∇Φ·δ = −bᵀδ.
-                let slope = -dot(&w.b, &w.delta);
-                let dissipation = |c: &crate::contact::Contacts, v: &[Vec3]| {
-                    if constrained { c.dissipation(v) } else { 0.0 }
-                };
-                let pattern = topology.pattern();
-                let start = self
-                    .assembler
-                    .potential(system, pattern, &w.x, &w.v, &w.v_tilde, beta_h)
-                    + dissipation(contacts, &w.v);
-                let mut alpha = 1.0;
-                let accepted = loop {
-                    for_each_row(&mut w.trial, |i, t| *t = w.v[i] + alpha * w.delta[i]);
-                    for_each_row(&mut w.x, |i, x| *x = w.x_tilde[i] + beta_h * w.trial[i]);
-                    let value = self
-                        .assembler
-                        .potential(system, pattern, &w.x, &w.trial, &w.v_tilde, beta_h)
-                        + dissipation(contacts, &w.trial);
-                    if value <= start + 1e-4 * alpha * slope {
-                        break true;
-                    }
-                    alpha *= 0.5;
-                    if alpha < MIN_STEP {
-                        break false;
-                    }
-                };
-                if !accepted {
-                    // Φ cannot decrease: converged if its slope is at the
-                    // rounding level of Φ, stalled otherwise.
-                    for_each_row(&mut w.x, |i, x| *x = w.x_tilde[i] + beta_h * w.v[i]);
-                    let magnitude = energy(system, &w.x, &w.v).1 + start.abs();
-                    newton.converged = slope.abs() <= rounding(magnitude);
-                    break;
-                }
-                std::mem::swap(&mut w.v, &mut w.trial);
+            match solved {
+                Err(StepError::NotPositiveDefinite { .. }) if !last => {}
+                Err(e) => return Err(e),
+                Ok(()) if !last && dot(self.b, delta) <= 0.0 => {}
+                Ok(()) => break,
             }
-            newton
-        };
-        for_each_row(&mut w.x, |i, x| *x = w.x_tilde[i] + beta_h * w.v[i]);
-
-        // The energy test.
-        let (before, magnitude_before) = energy(system, x0, v0);
-        let (after, magnitude_after) = energy(system, &w.x, &w.v);
-        let mut work = pin_work(system, x0, &w.x);
-        if constrained && !system.obstacles().is_empty() {
-            work += obstacle_work(
-                system,
-                contacts.held(),
-                &w.x,
-                &w.v,
-                &w.v_tilde,
-                beta_h,
-                &mut w.trial,
-            );
+            hessian = CompressedSprings::Clamped;
         }
-        let excess = after - before - work - rounding(magnitude_before.max(magnitude_after));
-        report.newton_iterations += newton.iterations;
-        report.newton_iterations_max = report.newton_iterations_max.max(newton.iterations);
-        if !self.linearized && !at_floor && (!newton.converged || excess > 0.0) {
-            self.contacts.clone_from(&self.saved_contacts);
-            self.history = saved_history;
-            return Ok(Outcome::Rejected);
+        if release && self.constrained {
+            let (matrix, filters) = self.topology.matrix_and_filters_mut();
+            self.contacts.release(matrix, delta, self.b, filters);
         }
-        report.newton_residual = report.newton_residual.max(newton.residual);
-        if !newton.converged {
-            if strict {
-                return Err(StepError::NoConvergence {
-                    time,
-                    iterations: newton.iterations,
-                    residual: newton.residual,
-                });
-            }
-            report.unconverged_steps += 1;
-        }
-        if excess > 0.0 {
-            report.energy_excess = report.energy_excess.max(excess);
-            if !self.linearized {
-                // The last resort: the free particles' kinetic energy
-                // absorbs the excess (all of it, if it is large enough).
-                let kinetic: f64 = (0..w.v.len())
-                    .filter(|&i| !system.is_pinned(i))
-                    .map(|i| 0.5 * masses[i] * w.v[i].norm_squared())
-                    .sum();
-                let factor = if kinetic > 0.0 {
-                    ((kinetic - excess).max(0.0) / kinetic).sqrt()
-                } else {
-                    1.0
-                };
-                for (i, v) in w.v.iter_mut().enumerate() {
-                    if !system.is_pinned(i) {
-                        *v *= factor;
-                    }
-                }
-                report.energy_corrections += 1;
-            }
-        }
-        state.commit(&mut w.x, &mut w.v, end.unwrap_or(time + h))?;
-        // The buffers swapped out of the state hold xₙ, vₙ: BDF2's next history.
-        std::mem::swap(&mut w.x_prev, &mut w.x);
-        std::mem::swap(&mut w.v_prev, &mut w.v);
-        self.history.record(system, state, h);
-        report.accepted_steps += 1;
-        report.contacts = system.end_step(state);
-        Ok(Outcome::Accepted {
-            easy: 3 * newton.iterations <= self.newton_iterations,
-        })
+        Ok(-dot(self.b, delta))
     }
+
+    /// Minimises `Φ` from the iterate in `it.v` (where `Φ` is `start`) in at
+    /// most `max_iterations` linear solves, `v0` being the step's initial
+    /// velocity. The iteration stops when the relative Newton decrement
+    /// ([`Newton::decrement`]) is at most `tolerance`, or when a full Newton
+    /// step would lower `Φ` by no more than the rounding of `Φ` itself,
+    /// `½|∇Φ·δ| ≤ rounding(Φ)` (stiff springs, whose forces carry the
+    /// rounding of their ends' coordinates times `k`, reach that floor
+    /// first).
+    ///
+    /// Every iterate is accepted through the Armijo condition
+    /// `Φ(v + αδ) ≤ Φ(v) + 10⁻⁴ α ∇Φ·δ`:
+    ///
+    /// - a full step that meets it is extended by doubling `α` (up to 64)
+    ///   while `Φ` keeps falling: where the model is stiffer than `Φ` (a
+    ///   clamped compressed spring, the quartic energy of a flat sheet
+    ///   bending) Newton's step undershoots;
+    /// - a full step that fails it gets the watchdog: one more Newton step
+    ///   from the full step's end, accepted if that point meets the Armijo
+    ///   condition relative to the iterate (Chamberlain, Powell, Lemaréchal &
+    ///   Pedersen, *The watchdog technique*, 1982; Nocedal & Wright,
+    ///   *Numerical Optimization*, §15.6). A stiff spring rotated along a
+    ///   straight line is stretched by `δ²/2L`, which the second step
+    ///   removes, so a rotating stiff body is not held to the steps its
+    ///   stretch allows;
+    /// - otherwise the step backtracks by halves. A line search that finds
+    ///   no decrease down to `α = 10⁻⁶` ends the iteration unconverged.
+    ///
+    /// # Errors
+    /// Assembly and solver errors.
+    pub(crate) fn minimize(
+        &mut self,
+        it: &mut Iterates<'_>,
+        v0: &[Vec3],
+        start: Potential,
+        max_iterations: usize,
+        tolerance: f64,
+    ) -> Result<Outcome, StepError> {
+        let mut current = start;
+        let mut outcome = Outcome {
+            converged: false,
+            iterations: 0,
+            residual: f64::INFINITY,
+        };
+        while outcome.iterations < max_iterations {
+            let slope = self.direction(it.v, it.delta, true)?;
+            outcome.iterations += 1;
+            if self.constrained {
+                // The solve updated the friction bounds and may have released
+                // contacts: Φ + D at the iterate as the line search sees it.
+                current = self.potential(it.v);
+            }
+            outcome.residual = self.decrement(slope, it.v, it.delta, v0);
+            if outcome.residual <= tolerance || 0.5 * slope.abs() <= current.rounding {
+                add(it.v, it.delta);
+                outcome.converged = true;
+                break;
+            }
+            let sufficient = |value: Potential, alpha: f64| {
+                value.value <= current.value + ARMIJO * alpha * slope
+            };
+            combine(it.trial, it.v, 1.0, it.delta);
+            let full = self.potential(it.trial);
+            if sufficient(full, 1.0) {
+                current = full;
+                let mut alpha = 2.0;
+                while alpha <= MAX_EXTRAPOLATION {
+                    combine(it.look, it.v, alpha, it.delta);
+                    let further = self.potential(it.look);
+                    if further.value >= current.value {
+                        break;
+                    }
+                    current = further;
+                    std::mem::swap(it.trial, it.look);
+                    alpha *= 2.0;
+                }
+                std::mem::swap(it.v, it.trial);
+                continue;
+            }
+            if outcome.iterations < max_iterations {
+                self.direction(it.trial, it.ahead, false)?;
+                outcome.iterations += 1;
+                combine(it.look, it.trial, 1.0, it.ahead);
+                let ahead = self.potential(it.look);
+                if sufficient(ahead, 1.0) {
+                    current = ahead;
+                    std::mem::swap(it.v, it.look);
+                    continue;
+                }
+            }
+            let mut alpha = 0.5;
+            loop {
+                combine(it.trial, it.v, alpha, it.delta);
+                let value = self.potential(it.trial);
+                if sufficient(value, alpha) {
+                    current = value;
+                    break;
+                }
+                alpha *= 0.5;
+                if alpha < MIN_STEP {
+                    return Ok(outcome);
+                }
+            }
+            std::mem::swap(it.v, it.trial);
+        }
+        Ok(outcome)
+    }
+}
+
+/// `v += δ`.
+fn add(v: &mut [Vec3], delta: &[Vec3]) {
+    for_each_row(v, |i, v| *v += delta[i]);
+}
+
+/// `out = v + α δ`.
+fn combine(out: &mut [Vec3], v: &[Vec3], alpha: f64, delta: &[Vec3]) {
+    for_each_row(out, |i, o| *o = v[i] + alpha * delta[i]);
 }

@@ -7,6 +7,7 @@ use crate::assembly::{Assembler, Linearization};
 use crate::block::SymBlock;
 use crate::cg::{self, BlockJacobi, PcgError, PcgSettings, PcgWorkspace};
 use crate::cholesky::SparseCholesky;
+use crate::conditioning::Rates;
 use crate::filter::Filter;
 use crate::matrix::BlockMatrix;
 use crate::pattern::Pattern;
@@ -23,8 +24,10 @@ pub enum LinearSolver {
 }
 
 impl Default for LinearSolver {
+    /// Sparse Cholesky: exact at any conditioning the step allows, where
+    /// PCG's iterations grow with the stiffness.
     fn default() -> Self {
-        Self::Pcg(PcgSettings::default())
+        Self::Cholesky
     }
 }
 
@@ -32,6 +35,8 @@ impl Default for LinearSolver {
 #[derive(Debug)]
 pub(crate) struct Topology {
     system: u64,
+    /// The bounds that limit a substep's length.
+    pub(crate) rates: Rates,
     matrix: BlockMatrix,
     jacobi: BlockJacobi,
     filters: Vec<Filter>,
@@ -97,6 +102,7 @@ pub(crate) fn topology<'a>(
             .collect();
         *cached = Some(Topology {
             system: system.id(),
+            rates: Rates::new(system),
             matrix,
             jacobi: BlockJacobi::default(),
             filters,
@@ -191,12 +197,9 @@ impl Solve<'_> {
                 let factor = cholesky
                     .as_mut()
                     .expect("built with the topology for this solver");
-                factor.solve(matrix, filters, b, x).map_err(|particle| {
-                    StepError::NotPositiveDefinite {
-                        time,
-                        particle: Some(particle),
-                    }
-                })?;
+                factor
+                    .solve(matrix, filters, b, x)
+                    .map_err(|particle| StepError::NotPositiveDefinite { time, particle })?;
             }
         }
         Ok(())

@@ -107,6 +107,22 @@ pub(crate) fn sum(n: usize, f: impl Fn(usize) -> f64 + Sync + Send) -> f64 {
     (0..n).map(f).sum()
 }
 
+/// `(Σᵢ f(i).0, Σᵢ f(i).1)`, in parallel when `n` is large.
+#[inline]
+pub(crate) fn sum2(n: usize, f: impl Fn(usize) -> (f64, f64) + Sync + Send) -> (f64, f64) {
+    let add = |a: (f64, f64), b: (f64, f64)| (a.0 + b.0, a.1 + b.1);
+    #[cfg(feature = "parallel")]
+    if n >= PARALLEL_MIN_PARTICLES {
+        use rayon::prelude::*;
+        return (0..n)
+            .into_par_iter()
+            .with_min_len(MIN_CHUNK)
+            .map(f)
+            .reduce(|| (0.0, 0.0), add);
+    }
+    (0..n).map(f).fold((0.0, 0.0), add)
+}
+
 /// `Σᵢ aᵢ·bᵢ`.
 pub(crate) fn dot(a: &[Vec3], b: &[Vec3]) -> f64 {
     sum(a.len(), |i| a[i].dot(&b[i]))

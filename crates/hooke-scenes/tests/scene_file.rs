@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use hooke_core::{Path as Motion, Shape, Vec3};
-use hooke_implicit::Scheme;
+use hooke_implicit::{Implicit, Scheme};
 use hooke_scenes::file::{self, ErrorKind, SceneFileError};
 use hooke_scenes::{ExplicitMethod, IntegratorSpec, SolverSpec, builtin};
 
@@ -178,7 +178,7 @@ fn a_cloth_file_says_what_the_scene_holds() {
                 max_iterations: 300
             },
             newton_iterations: 4,
-            newton_tolerance: 1e-3,
+            newton_tolerance: Implicit::NEWTON_TOLERANCE,
         }
     );
     let pinned: Vec<usize> = scene.system.pinned().collect();

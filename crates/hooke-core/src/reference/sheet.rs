@@ -3,7 +3,7 @@
 use crate::{BuildError, System, SystemBuilder};
 
 /// An `n`×`n` grid of equal particles spanning `size`×`size` m in the
-/// horizontal x–z plane, with the spring families of cloth:
+/// horizontal plane `y = height`, with the spring families of cloth:
 ///
 /// - structural (stretch) springs between row and column neighbours,
 ///   `2n(n − 1)` of them;
@@ -21,6 +21,8 @@ pub struct Sheet {
     pub particles_per_side: usize,
     /// Side length in m.
     pub size: f64,
+    /// Height `y` of the sheet's plane in m.
+    pub height: f64,
     /// Total mass in kg, shared equally.
     pub mass: f64,
     /// Stiffness of every spring in N/m.
@@ -34,13 +36,14 @@ pub struct Sheet {
 }
 
 impl Sheet {
-    /// A 1 m, 0.3 kg sheet of `n`×`n` particles with 2000 N/m springs, light
-    /// damping (`c = 0.01`, `γ = 10⁻⁴`) and standard gravity.
+    /// A 1 m, 0.3 kg sheet of `n`×`n` particles at `y = 0` with 2000 N/m
+    /// springs, light damping (`c = 0.01`, `γ = 10⁻⁴`) and standard gravity.
     #[must_use]
     pub fn new(particles_per_side: usize) -> Self {
         Self {
             particles_per_side,
             size: 1.0,
+            height: 0.0,
             mass: 0.3,
             stiffness: 2000.0,
             damping: 0.01,
@@ -81,7 +84,7 @@ impl Sheet {
             for col in 0..n {
                 b.particle(
                     particle_mass,
-                    [col as f64 * spacing, 0.0, row as f64 * spacing],
+                    [col as f64 * spacing, self.height, row as f64 * spacing],
                 );
             }
         }
