@@ -47,7 +47,8 @@ pub struct StepReport {
     /// `hooke_implicit::Implicit`), zero where only linearised steps were
     /// taken.
     pub newton_residual: f64,
-    /// Particle–obstacle contacts resolved at the end of the step.
+    /// Particle–obstacle contacts of the step: those resolved at its end,
+    /// and for implicit methods those held on an obstacle within it.
     pub contacts: usize,
 }
 

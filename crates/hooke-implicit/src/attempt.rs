@@ -305,7 +305,9 @@ impl Implicit {
         std::mem::swap(v_prev, v);
         self.history.record(system, state, h);
         report.accepted_steps += 1;
-        report.contacts = system.end_step(state);
+        // The particles the step held on obstacles, and those the end of the
+        // step pushes out of one.
+        report.contacts = self.contacts.held().count() + system.end_step(state);
         Ok(Outcome::Accepted {
             easy: 3 * outcome.iterations <= self.newton_iterations,
             error,
