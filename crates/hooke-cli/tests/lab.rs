@@ -92,7 +92,7 @@ fn accuracy_writes_runs_orders_and_both_plots() {
         "--builtin",
         "damped-oscillator",
         "--methods",
-        "velocity-verlet,backward-euler,dopri5",
+        "velocity-verlet,backward-euler,dormand-prince",
         "--dt",
         "0.001:0.008:4",
         "--tolerances",

@@ -57,6 +57,7 @@ mod obstacle;
 pub mod reference;
 mod spring;
 mod state;
+mod step;
 mod system;
 
 pub use builder::{SpringEntry, SystemBuilder};
@@ -69,6 +70,7 @@ pub use observer::{EnergyLog, EnergySample, Observer, Simulation, StrainLog};
 pub use obstacle::{Obstacle, Path, Shape};
 pub use spring::{CompressedSprings, Linearized, Spring};
 pub use state::{History, State};
+pub use step::{Start, StepBuffers};
 pub use system::System;
 
 /// A 3-vector of `f64`: positions, velocities, forces.
