@@ -43,8 +43,27 @@ fn allocations_during(work: impl FnOnce()) -> usize {
 
 /// The counter is global, so this binary has a single test: the harness
 /// allocates while it reports on other tests, and there are none.
+///
+/// With the `parallel` feature the test thread first joins rayon's global
+/// pool as its worker 0 (`use_current_thread`), the way a program that
+/// wants allocation-free parallel steps sets up its pool: a parallel call
+/// from a worker queues its jobs in that worker's own deque, whose buffer
+/// (64 jobs) never grows at the fan-out of a force evaluation, where a call
+/// from outside the pool goes through rayon's injector, which allocates a
+/// new block every 63 calls — a count no warm-up can line up. Then it
+/// waits until every other worker has started, since the counter counts
+/// their allocations too.
 #[test]
 fn steady_state_work_does_not_allocate() {
+    #[cfg(feature = "parallel")]
+    rayon::ThreadPoolBuilder::new()
+        .use_current_thread()
+        .build_global()
+        .expect("nothing in this binary built the global pool before");
+    // The other workers start in the background and allocate as they set
+    // up; a job on every worker waits until all of them have.
+    #[cfg(feature = "parallel")]
+    rayon::broadcast(|_| ());
     steady_state_steps_do_not_allocate();
     implicit_steps_do_not_allocate();
     #[cfg(feature = "parallel")]
