@@ -3,10 +3,12 @@
 
 use std::ffi::OsString;
 use std::io::Write;
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
+use hooke_core::{ObserveFn, State, StepInfo, System};
 use hooke_scenes::{Scene, builtin, file};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -158,7 +160,11 @@ fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), String> {
         bar.set_style(style.progress_chars("=> "));
     }
     let options = RunOptions::new(&args.out).gif(!args.no_gif);
-    let summary = run(&scene, &options, |done, _| bar.set_position(done as u64));
+    let mut progress = ObserveFn(|_: &System, _: &State, step: &StepInfo| {
+        bar.set_position(step.index as u64);
+        ControlFlow::Continue(())
+    });
+    let summary = run(&scene, &options, &mut progress);
     bar.finish_and_clear();
     let summary = summary.map_err(|e| e.to_string())?;
     report(&summary, !args.no_gif, out).map_err(|e| CliError::from(e).to_string())?;

@@ -71,7 +71,7 @@
 //! # Timing
 //!
 //! Each run is repeated `repeat` times and its wall time is the median of
-//! the repeats' time inside the steps ([`trial::run`](crate::trial::run));
+//! the repeats' time inside the steps ([`Run::wall`](hooke_core::Run::wall));
 //! the reference is not timed. The runs go one after another, so that no
 //! two compete for the cores (the integrators may use them all on large
 //! systems); only the three reference runs, which are not timed, run in
@@ -98,7 +98,9 @@ mod reference;
 
 use serde::Serialize;
 
-use hooke_core::{State, System};
+use std::ops::ControlFlow;
+
+use hooke_core::{ObserveFn, Simulation, State, StepInfo, System};
 use hooke_scenes::Scene;
 
 pub use reference::AxialOscillator;
@@ -106,7 +108,6 @@ use reference::{Checkpoints, REFERENCE_METHOD, numerical, rms, steps_per_interva
 
 use crate::method::{Method, Settings};
 use crate::spectrum::omega_max;
-use crate::trial::{Flow, Outcome, run};
 use crate::{LabError, Range};
 
 /// How far above the reference's error and the rounding error a run's
@@ -460,33 +461,27 @@ fn measure(
     let steps = job.per_frame * options.frames;
     let mut errors = Vec::with_capacity(options.frames);
     let mut integrator = job.method.build(&options.settings, job.tolerance)?;
-    let first: Outcome = run(
-        system,
-        &mut integrator,
-        job.step,
-        steps,
-        |n, state: &State| {
-            if n % job.per_frame == 0 {
-                if let Some(x) = checkpoints.get(n / job.per_frame - 1) {
-                    errors.push(rms(free, state.positions(), x));
-                }
-            }
-            Flow::Continue
-        },
-    );
-    let mut walls = vec![first.wall_s];
-    if first.failure.is_none() {
+    let mut state = system.initial_state();
+    let mut measure_error = ObserveFn(|_: &System, state: &State, step: &StepInfo| {
+        if let Some(x) = checkpoints.get(step.index / job.per_frame - 1) {
+            errors.push(rms(free, state.positions(), x));
+        }
+        ControlFlow::Continue(())
+    });
+    let first = Simulation::new(system, &mut integrator)
+        .observe(job.per_frame, &mut measure_error)
+        .run_to_end(&mut state, job.step, steps);
+    let mut walls = vec![first.wall.as_secs_f64()];
+    if first.failure().is_none() {
         for _ in 1..options.repeat {
             let mut integrator = job.method.build(&options.settings, job.tolerance)?;
-            walls.push(
-                run(system, &mut integrator, job.step, steps, |_, _| {
-                    Flow::Continue
-                })
-                .wall_s,
-            );
+            let mut state = system.initial_state();
+            let again =
+                Simulation::new(system, &mut integrator).run_to_end(&mut state, job.step, steps);
+            walls.push(again.wall.as_secs_f64());
         }
     }
-    let complete = first.failure.is_none() && errors.len() == options.frames;
+    let complete = first.failure().is_none() && errors.len() == options.frames;
     let finite = |e: f64| (complete && e.is_finite()).then_some(e);
     let error_rms = errors.last().copied().and_then(finite);
     let error_max = errors.iter().copied().reduce(f64::max).and_then(finite);
@@ -508,7 +503,7 @@ fn measure(
         force_evaluations: first.report.force_evaluations,
         linear_iterations: first.report.linear_iterations,
         linear_solves: first.report.linear_solves,
-        failure: first.failure.map(|e| e.to_string()),
+        failure: first.failure().map(ToString::to_string),
         resolved: false,
     })
 }

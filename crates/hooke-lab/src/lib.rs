@@ -5,18 +5,20 @@
 //!
 //! Every measurement runs the scene's [`System`](hooke_core::System) with
 //! the integrators of `hooke-explicit` and `hooke-implicit`
-//! ([`Method::ALL`]) through [`trial::run`], which times the steps alone.
+//! ([`Method::ALL`]) through [`Simulation`](hooke_core::Simulation), which
+//! times the steps alone; a stability run watches its [`EnergyBudget`].
 
 pub mod accuracy;
+mod budget;
 mod error;
 mod method;
 pub mod plot;
 mod range;
 mod spectrum;
 pub mod stability;
-pub mod trial;
 
 pub use accuracy::{AccuracyOptions, AccuracyReport, accuracy};
+pub use budget::EnergyBudget;
 pub use error::LabError;
 pub use method::{Method, OscillatorStability, Settings};
 pub use range::Range;

@@ -57,12 +57,12 @@ impl Method {
     ];
 
     /// The name reports and the command line use: the integrator's
-    /// [`Integrator::name`], e.g. `"rk4"`, `"dopri5"`, `"backward-euler"`.
+    /// [`Integrator::name`], e.g. `"rk4"`, `"dormand-prince"`, `"backward-euler"`.
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
             Self::Explicit(method) => method.name(),
-            Self::DormandPrince => "dopri5",
+            Self::DormandPrince => hooke_explicit::DormandPrince::NAME,
             Self::BackwardEuler => "backward-euler",
             Self::Bdf2 => "bdf2",
         }

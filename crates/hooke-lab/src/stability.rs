@@ -40,12 +40,12 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use hooke_core::System;
+use hooke_core::{Simulation, System};
 use hooke_scenes::Scene;
 
+use crate::budget::EnergyBudget;
 use crate::method::{Method, Settings};
 use crate::spectrum::{Spectrum, omega_max};
-use crate::trial::{EnergyBudget, Flow, run};
 use crate::{LabError, Range};
 
 /// The default energy bound of a stable cell.
@@ -215,31 +215,25 @@ pub fn run_cell(
     energy_bound: f64,
 ) -> Result<CellRun, LabError> {
     let mut integrator = method.build(settings, None)?;
-    let mut budget = EnergyBudget::new(system);
-    let mut exceeded = false;
-    let outcome = run(system, &mut integrator, dt, steps, |_, state| match budget
-        .observe(system, state)
-    {
-        Some(ratio) if ratio.is_nan() || ratio > energy_bound => {
-            exceeded = true;
-            Flow::Stop
-        }
-        _ => Flow::Continue,
-    });
-    let stopped = match (&outcome.failure, exceeded) {
+    let mut budget = EnergyBudget::new(system).with_bound(energy_bound);
+    let mut state = system.initial_state();
+    let run = Simulation::new(system, &mut integrator)
+        .observe(1, &mut budget)
+        .run_to_end(&mut state, dt, steps);
+    let stopped = match (run.failure(), budget.exceeded()) {
         (Some(error), _) => Some(error.to_string()),
         (None, true) => Some(format!(
             "energy ratio {:.3e} above the bound {energy_bound} at t = {:.6e} s",
             budget.max_ratio(),
-            outcome.state.time()
+            state.time()
         )),
         (None, false) => None,
     };
     Ok(CellRun {
         stable: stopped.is_none(),
         max_energy_ratio: budget.max_ratio(),
-        wall_s: outcome.wall_s,
-        steps: outcome.steps,
+        wall_s: run.wall.as_secs_f64(),
+        steps: run.steps,
         stopped,
     })
 }

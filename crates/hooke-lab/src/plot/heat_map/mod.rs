@@ -19,7 +19,7 @@ pub struct Cell {
     /// Whether the run stayed bounded (as the caller judged it).
     pub stable: bool,
     /// The largest energy ratio seen during the run (energy over initial
-    /// energy plus work done on the system, see `trial::EnergyBudget`).
+    /// energy plus work done on the system, see `EnergyBudget`).
     pub max_energy_ratio: f64,
 }
 
