@@ -127,12 +127,13 @@ pub struct DormandPrince {
 }
 
 impl Default for DormandPrince {
-    /// `rtol = 1e-6`, `atol = 1e-9`, at most 100 000 substeps per step.
+    /// [`DormandPrince::RTOL`], [`DormandPrince::ATOL`], at most
+    /// [`DormandPrince::MAX_SUBSTEPS`] substeps per step.
     fn default() -> Self {
         Self {
-            rtol: 1e-6,
-            atol: 1e-9,
-            max_substeps: 100_000,
+            rtol: Self::RTOL,
+            atol: Self::ATOL,
+            max_substeps: Self::MAX_SUBSTEPS,
             forces: ForceEvaluator::default(),
             out: StepBuffers::default(),
             proposal: None,
@@ -147,6 +148,12 @@ impl Default for DormandPrince {
 impl DormandPrince {
     /// The name scene files, reports and the command line use.
     pub const NAME: &'static str = "dormand-prince";
+    /// The default relative tolerance.
+    pub const RTOL: f64 = 1e-6;
+    /// The default absolute tolerance, m and m/s.
+    pub const ATOL: f64 = 1e-9;
+    /// The default cap on substeps per call to [`Integrator::step`].
+    pub const MAX_SUBSTEPS: usize = 100_000;
 
     /// An integrator with relative tolerance `rtol` and absolute tolerance
     /// `atol` (in m for positions and m/s for velocities).

@@ -51,6 +51,7 @@ mod euler;
 mod gear;
 mod heun;
 mod leapfrog;
+mod method;
 mod midpoint;
 mod ops;
 mod position_verlet;
@@ -64,25 +65,9 @@ pub use euler::ExplicitEuler;
 pub use gear::Gear;
 pub use heun::Heun;
 pub use leapfrog::Leapfrog;
+pub use method::{ExplicitMethod, fixed_step_integrators};
 pub use midpoint::Midpoint;
 pub use position_verlet::PositionVerlet;
 pub use rk4::Rk4;
 pub use symplectic_euler::SymplecticEuler;
 pub use velocity_verlet::VelocityVerlet;
-
-/// One of each fixed-step integrator, boxed, in the order of the table above.
-#[must_use]
-pub fn fixed_step_integrators() -> Vec<Box<dyn hooke_core::Integrator + Send>> {
-    vec![
-        Box::new(ExplicitEuler::new()),
-        Box::new(SymplecticEuler::new()),
-        Box::new(Leapfrog::new()),
-        Box::new(VelocityVerlet::new()),
-        Box::new(PositionVerlet::new()),
-        Box::new(Midpoint::new()),
-        Box::new(Heun::new()),
-        Box::new(Rk4::new()),
-        Box::new(Beeman::new()),
-        Box::new(Gear::new()),
-    ]
-}

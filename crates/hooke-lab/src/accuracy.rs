@@ -106,9 +106,9 @@ use hooke_scenes::Scene;
 pub use reference::AxialOscillator;
 use reference::{Checkpoints, REFERENCE_METHOD, numerical, rms, steps_per_interval};
 
-use crate::method::{Method, Settings};
 use crate::spectrum::omega_max;
 use crate::{LabError, Range};
+use crate::{Method, Settings};
 
 /// How far above the reference's error and the rounding error a run's
 /// error must lie to count in the order fit.
@@ -460,7 +460,7 @@ fn measure(
 ) -> Result<Run, LabError> {
     let steps = job.per_frame * options.frames;
     let mut errors = Vec::with_capacity(options.frames);
-    let mut integrator = job.method.build(&options.settings, job.tolerance)?;
+    let mut integrator = options.settings.build(job.method, job.tolerance)?;
     let mut state = system.initial_state();
     let mut measure_error = ObserveFn(|_: &System, state: &State, step: &StepInfo| {
         if let Some(x) = checkpoints.get(step.index / job.per_frame - 1) {
@@ -474,7 +474,7 @@ fn measure(
     let mut walls = vec![first.wall.as_secs_f64()];
     if first.failure().is_none() {
         for _ in 1..options.repeat {
-            let mut integrator = job.method.build(&options.settings, job.tolerance)?;
+            let mut integrator = options.settings.build(job.method, job.tolerance)?;
             let mut state = system.initial_state();
             let again =
                 Simulation::new(system, &mut integrator).run_to_end(&mut state, job.step, steps);

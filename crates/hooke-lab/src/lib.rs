@@ -11,16 +11,17 @@
 pub mod accuracy;
 mod budget;
 mod error;
-mod method;
 pub mod plot;
 mod range;
+mod settings;
 mod spectrum;
 pub mod stability;
 
 pub use accuracy::{AccuracyOptions, AccuracyReport, accuracy};
 pub use budget::EnergyBudget;
 pub use error::LabError;
-pub use method::{Method, OscillatorStability, Settings};
+pub use hooke_scenes::{Method, OscillatorStability};
 pub use range::Range;
+pub use settings::Settings;
 pub use spectrum::{MAX_ITERATIONS, Spectrum, omega_max};
 pub use stability::{StabilityOptions, StabilityReport, stability};

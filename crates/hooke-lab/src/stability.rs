@@ -44,9 +44,9 @@ use hooke_core::{Simulation, System};
 use hooke_scenes::Scene;
 
 use crate::budget::EnergyBudget;
-use crate::method::{Method, Settings};
 use crate::spectrum::{Spectrum, omega_max};
 use crate::{LabError, Range};
+use crate::{Method, Settings};
 
 /// The default energy bound of a stable cell.
 pub const DEFAULT_ENERGY_BOUND: f64 = 10.0;
@@ -214,7 +214,7 @@ pub fn run_cell(
     steps: usize,
     energy_bound: f64,
 ) -> Result<CellRun, LabError> {
-    let mut integrator = method.build(settings, None)?;
+    let mut integrator = settings.build(method, None)?;
     let mut budget = EnergyBudget::new(system).with_bound(energy_bound);
     let mut state = system.initial_state();
     let run = Simulation::new(system, &mut integrator)

@@ -85,8 +85,9 @@ fn the_richardson_estimate_is_within_a_factor_two_of_the_references_true_error()
     let closed = AxialOscillator::of(&scene.system).unwrap();
     let interval = options.duration / options.frames as f64;
     let per_frame = (interval / h).round() as usize;
-    let mut integrator = Method::Explicit(ExplicitMethod::Rk4)
-        .build(&options.settings, None)
+    let mut integrator = options
+        .settings
+        .build(Method::Explicit(ExplicitMethod::Rk4), None)
         .unwrap();
     let mut true_error = 0.0_f64;
     let mut state = scene.system.initial_state();

@@ -5,9 +5,10 @@
 use std::path::{Path, PathBuf};
 
 use hooke_core::{Path as Motion, Shape, Vec3};
-use hooke_implicit::Scheme;
+use hooke_explicit::DormandPrince;
+use hooke_implicit::{Implicit, PcgSettings, Scheme};
 use hooke_scenes::file::{self, ErrorKind, SceneFileError};
-use hooke_scenes::{ExplicitMethod, IntegratorSpec, SolverSpec, builtin};
+use hooke_scenes::{IntegratorSpec, Method, SolverSpec, builtin};
 
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
@@ -178,7 +179,7 @@ fn a_cloth_file_says_what_the_scene_holds() {
                 max_iterations: 300
             },
             newton_iterations: 4,
-            newton_tolerance: 1e-3,
+            newton_tolerance: Implicit::NEWTON_TOLERANCE,
         }
     );
     let pinned: Vec<usize> = scene.system.pinned().collect();
@@ -209,22 +210,43 @@ fn defaults_are_backward_euler_cholesky_one_newton_iteration() {
 }
 
 #[test]
-fn explicit_and_adaptive_methods_are_named_as_the_integrators_are() {
-    for method in ExplicitMethod::ALL {
-        let text = format!("[integrator]\nmethod = \"{}\"\n{CLOTH}", method.name());
-        assert_eq!(
-            parse(&text).unwrap().integrator,
-            IntegratorSpec::Explicit(method)
-        );
+fn every_method_is_named_as_its_integrator_is_with_the_integrators_defaults() {
+    for method in Method::ALL {
+        let text = format!("[integrator]\nmethod = \"{method}\"\n{CLOTH}");
+        let spec = parse(&text).unwrap().integrator;
+        assert_eq!(spec, IntegratorSpec::new(method));
+        assert_eq!(spec.method(), method);
+        assert_eq!(spec.build().unwrap().name(), method.name());
     }
     let text = format!("[integrator]\nmethod = \"dormand-prince\"\nrtol = 1e-5\n{CLOTH}");
     assert_eq!(
         parse(&text).unwrap().integrator,
         IntegratorSpec::Adaptive {
             rtol: 1e-5,
-            atol: 1e-9
+            atol: DormandPrince::ATOL,
         }
     );
+    let text = format!("[integrator]\nsolver = \"pcg\"\n{CLOTH}");
+    let defaults = PcgSettings::default();
+    let IntegratorSpec::Implicit { solver, .. } = parse(&text).unwrap().integrator else {
+        panic!("backward Euler is the default method");
+    };
+    assert_eq!(
+        solver,
+        SolverSpec::Pcg {
+            tolerance: defaults.tolerance(),
+            max_iterations: defaults.max_iterations(),
+        }
+    );
+}
+
+#[test]
+fn an_unknown_method_is_an_error_listing_every_method() {
+    let error = parse(&format!("[integrator]\nmethod = \"dopri5\"\n{CLOTH}")).unwrap_err();
+    let message = error.to_string();
+    for method in Method::ALL {
+        assert!(message.contains(&format!("\"{method}\"")), "{message}");
+    }
 }
 
 #[test]

@@ -13,7 +13,7 @@ use hooke_core::{ObserveFn, Path, Simulation, State, StepInfo, System, Vec3};
 use hooke_scenes::ExplicitMethod;
 
 use crate::LabError;
-use crate::method::{Method, Settings};
+use crate::{Method, Settings};
 
 /// Relative size below which a component across the axis counts as zero.
 const ACROSS: f64 = 1e-12;
@@ -205,7 +205,7 @@ pub(crate) fn numerical(
     let solve = |&factor: &usize| -> Result<Checkpoints, LabError> {
         let per_frame = coarse_per_frame * (4 / factor);
         let step = interval / per_frame as f64;
-        let mut integrator = REFERENCE_METHOD.build(&Settings::default(), None)?;
+        let mut integrator = Settings::default().build(REFERENCE_METHOD, None)?;
         let mut checkpoints = Vec::with_capacity(frames);
         let mut state = system.initial_state();
         let mut record = ObserveFn(|_: &System, state: &State, _: &StepInfo| {
