@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
-use crate::error::OutputError;
+use hooke_viz::OutputError;
 
 /// A failure of a `hooke` command that leaves no usable result: invalid
 /// input, or a file or directory that cannot be written. A run whose
@@ -46,7 +46,7 @@ pub enum CliError {
     },
     /// A figure could not be drawn or written.
     #[error(transparent)]
-    Plot(Box<hooke_lab::plot::PlotError>),
+    Plot(Box<hooke_viz::PlotError>),
     /// The command's own output could not be printed.
     #[error("cannot print: {0}")]
     Print(#[from] std::io::Error),

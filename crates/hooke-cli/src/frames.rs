@@ -6,15 +6,12 @@ use std::path::{Path, PathBuf};
 
 use hooke_core::{Observer, Run, State, StepInfo, System, Vec3};
 
-use crate::animation::{AnimationWriter, MAX_GIF_FRAMES};
-use crate::bounds::Bounds;
-use crate::camera::{Camera, View};
-use crate::error::OutputError;
-use crate::mesh::Mesh;
-use crate::ply::write_frame;
-use crate::render::{Renderer, save_png};
+use hooke_viz::{
+    AnimationWriter, Bounds, Camera, MAX_GIF_FRAMES, Mesh, OutputError, Renderer, View,
+    obstacles_at, save_png, write_frame,
+};
+
 use crate::runner::{ANIMATION_FILE, PREVIEW_FILE};
-use crate::scene_mesh::obstacles_at;
 
 /// The animation being written and the renderer of its pictures.
 struct Animation {

@@ -6,15 +6,15 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use hooke_lab::accuracy::{ReferenceKind, Series as RunSeries};
-use hooke_lab::plot::{
-    Cell, HeatMapPanel, HeatMaps, LogLogPlot, Reference, Series, write_heat_maps, write_log_log,
-};
 use hooke_lab::{
     AccuracyOptions, AccuracyReport, LabError, Method, Range, StabilityOptions, StabilityReport,
     accuracy, stability,
 };
 use hooke_scenes::Scene;
 use hooke_scenes::SolverSpec;
+use hooke_viz::plot::{
+    Cell, HeatMapPanel, HeatMaps, LogLogPlot, Reference, Series, write_heat_maps, write_log_log,
+};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::cli::load_scene;

@@ -8,12 +8,10 @@ use std::time::Instant;
 
 use hooke_core::{EnergyLog, Observer, Simulation, State, StepError, StrainLog, System, Vec3};
 use hooke_scenes::{IntegratorSpec, Scene, Timing};
+use hooke_viz::{Bounds, run_bounds, scene_mesh};
 
-use crate::bounds::Bounds;
 use crate::cli_error::CliError;
 use crate::frames::FrameWriter;
-use crate::framing::run_bounds;
-use crate::scene_mesh::scene_mesh;
 use crate::step_record::StepRecord;
 use crate::summary::{Summary, median};
 
@@ -75,7 +73,7 @@ impl RunOptions {
 ///   are removed first);
 /// - [`ANIMATION_FILE`]: the frames rendered with a camera fixed before the
 ///   run from [`run_bounds`], subsampled to at most
-///   [`MAX_GIF_FRAMES`](crate::MAX_GIF_FRAMES) pictures that play in about
+///   [`MAX_GIF_FRAMES`](hooke_viz::MAX_GIF_FRAMES) pictures that play in about
 ///   real time;
 /// - [`PREVIEW_FILE`]: the last state, rendered larger;
 /// - [`SUMMARY_FILE`]: the [`Summary`], which is also returned.

@@ -15,7 +15,7 @@ fn json(path: &Path) -> Value {
 }
 
 fn assert_png(path: &Path) {
-    let image = tiny_skia::Pixmap::load_png(path).unwrap();
+    let image = hooke_viz::Pixmap::load_png(path).unwrap();
     assert!(
         image.width() >= 600 && image.height() >= 400,
         "{}",

@@ -134,7 +134,7 @@ fn check_frames(dir: &Path, vertices: usize, faces: usize, edges: usize) -> usiz
         .collect();
     frames.sort();
     for (index, path) in frames.iter().enumerate() {
-        assert_eq!(path, &dir.join(hooke_cli::frame_file_name(index)));
+        assert_eq!(path, &dir.join(hooke_viz::frame_file_name(index)));
         let mut file = std::fs::File::open(path).unwrap();
         let ply = Parser::<DefaultElement>::new().read_ply(&mut file).unwrap();
         let positions = &ply.payload["vertex"];

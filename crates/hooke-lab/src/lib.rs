@@ -1,7 +1,7 @@
 //! Measurements of mass-spring integrators on a user's scene: which stay
 //! stable at which stiffness and timestep ([`mod@stability`]), and what
-//! accuracy each buys per second of run time ([`mod@accuracy`]), with the
-//! figures of both ([`plot`]).
+//! accuracy each buys per second of run time ([`mod@accuracy`]). Their
+//! figures are drawn by `hooke-viz`; this crate draws nothing.
 //!
 //! Every measurement runs the scene's [`System`](hooke_core::System) with
 //! the integrators of `hooke-explicit` and `hooke-implicit`
@@ -11,7 +11,6 @@
 pub mod accuracy;
 mod budget;
 mod error;
-pub mod plot;
 mod range;
 mod settings;
 mod spectrum;

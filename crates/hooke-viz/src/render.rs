@@ -21,9 +21,9 @@ use tiny_skia::{
 use crate::camera::{Camera, Projected};
 use crate::error::OutputError;
 use crate::mesh::Mesh;
-use crate::shape::Shape;
 use crate::style::{Style, color};
 use crate::tessellate::{Facet, Tone, tessellate};
+use hooke_core::Shape;
 
 /// Something to draw, already projected.
 enum Item {
@@ -85,7 +85,7 @@ impl Renderer {
     ) -> Result<Pixmap, OutputError> {
         mesh.check_frame(positions)?;
         for (index, shape) in obstacles.iter().enumerate() {
-            shape.check(index)?;
+            crate::check_shape(shape, index)?;
         }
         let (width, height) = (self.camera.width(), self.camera.height());
         let mut pixmap = Pixmap::new(width, height).ok_or(OutputError::ImageSize {

@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use hooke_cli::{Mesh, OutputError, frame_file_name, write_frame, write_ply};
 use hooke_core::Vec3;
+use hooke_viz::{Mesh, OutputError, frame_file_name, write_frame, write_ply};
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, Ply, Property};
 

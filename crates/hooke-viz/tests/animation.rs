@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use gif::{ColorOutput, DecodeOptions, Repeat};
-use hooke_cli::{AnimationWriter, MAX_GIF_FRAMES, MAX_GIF_WIDTH, OutputError, Pixmap};
+use hooke_viz::{AnimationWriter, MAX_GIF_FRAMES, MAX_GIF_WIDTH, OutputError, Pixmap};
 use tiny_skia::Color;
 
 fn solid(width: u32, height: u32, shade: u8) -> Pixmap {

@@ -11,7 +11,7 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use hooke_core::Vec3;
 
-use crate::shape::Shape;
+use hooke_core::Shape;
 
 /// Longitude steps of a sphere or capsule.
 const SEGMENTS: usize = 48;
@@ -98,7 +98,7 @@ pub(crate) fn tessellate(shape: &Shape, focus: Vec3, reach: f64, out: &mut Vec<F
             rotation,
         } => {
             let axes: [Vec3; 3] =
-                std::array::from_fn(|i| rotation.matrix().column(i).into_owned() * half_extents[i]);
+                std::array::from_fn(|i| rotation.column(i).into_owned() * half_extents[i]);
             for i in 0..3 {
                 let (j, k) = ((i + 1) % 3, (i + 2) % 3);
                 for side in [-1.0, 1.0] {
@@ -212,11 +212,11 @@ mod tests {
             Shape::Box {
                 center: Vec3::x(),
                 half_extents: Vec3::new(1.0, 0.5, 0.25),
-                rotation: Rotation3::from_euler_angles(0.1, 0.2, 0.3),
+                rotation: Rotation3::from_euler_angles(0.1, 0.2, 0.3).into_inner(),
             },
         ];
         for shape in &shapes {
-            let bounds = shape.bounds().unwrap();
+            let bounds = crate::shape_bounds(&shape).unwrap();
             let facets = facets(shape);
             assert!(!facets.is_empty());
             for f in &facets {

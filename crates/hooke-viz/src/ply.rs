@@ -20,7 +20,7 @@ use crate::mesh::Mesh;
 /// up to 99 999 frames.
 ///
 /// ```
-/// assert_eq!(hooke_cli::frame_file_name(42), "frame_00042.ply");
+/// assert_eq!(hooke_viz::frame_file_name(42), "frame_00042.ply");
 /// ```
 #[must_use]
 pub fn frame_file_name(index: usize) -> String {

@@ -13,10 +13,10 @@ use crate::error::{OutputError, Primitive};
 /// then checked only for its length and finiteness.
 ///
 /// ```
-/// use hooke_cli::Mesh;
+/// use hooke_viz::Mesh;
 /// let rope = Mesh::new(3, Vec::new(), vec![[0, 1], [1, 2]])?;
 /// assert_eq!(rope.edges().len(), 2);
-/// # Ok::<(), hooke_cli::OutputError>(())
+/// # Ok::<(), hooke_viz::OutputError>(())
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Mesh {

@@ -2,7 +2,7 @@
 
 use hooke_core::Vec3;
 
-use crate::shape::Shape;
+use hooke_core::Shape;
 
 /// An axis-aligned bounding box, `min <= max` componentwise.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,7 +41,7 @@ impl Bounds {
     pub fn of_scene(positions: &[Vec3], obstacles: &[Shape]) -> Option<Self> {
         obstacles
             .iter()
-            .filter_map(Shape::bounds)
+            .filter_map(crate::shape_bounds)
             .chain(Self::of_points(positions))
             .reduce(Self::union)
     }

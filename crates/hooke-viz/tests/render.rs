@@ -3,10 +3,8 @@
 use std::f64::consts::PI;
 
 use approx::assert_relative_eq;
-use hooke_cli::{
-    Bounds, Camera, Mesh, OutputError, Pixmap, Renderer, Rgb, Shape, Style, View, save_png,
-};
-use hooke_core::Vec3;
+use hooke_core::{Shape, Vec3};
+use hooke_viz::{Bounds, Camera, Mesh, OutputError, Pixmap, Renderer, Rgb, Style, View, save_png};
 
 const BACKGROUND: Rgb = [250, 250, 250];
 

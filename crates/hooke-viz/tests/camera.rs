@@ -1,8 +1,8 @@
 //! The perspective camera: centring, foreshortening, orientation, framing.
 
 use approx::assert_relative_eq;
-use hooke_cli::{Bounds, Camera, OutputError, View};
 use hooke_core::Vec3;
+use hooke_viz::{Bounds, Camera, OutputError, View};
 
 fn scene() -> Bounds {
     Bounds::new(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(2.0, 1.5, 0.5))

@@ -5,7 +5,7 @@ use hooke_core::{System, Vec3};
 
 use crate::bounds::Bounds;
 use crate::scene_mesh::obstacles_at;
-use crate::shape::Shape;
+use hooke_core::Shape;
 
 /// The box a camera keeps in view over a run of `system` lasting
 /// `duration` seconds, or `None` if there is nothing finite to frame.
@@ -32,7 +32,7 @@ use crate::shape::Shape;
 /// b.particle(1.0, [1.0, 2.0, 0.0]);
 /// b.gravity([0.0, -9.81, 0.0]);
 /// b.obstacle(Obstacle::new(Shape::Plane { point: Vec3::zeros(), normal: Vec3::y() }));
-/// let bounds = hooke_cli::run_bounds(&b.build()?, 1.0).expect("two particles");
+/// let bounds = hooke_viz::run_bounds(&b.build()?, 1.0).expect("two particles");
 /// assert_eq!(bounds.min(), Vec3::zeros()); // down to the floor
 /// assert_eq!(bounds.max(), Vec3::new(1.0, 2.0, 0.0));
 /// # Ok::<(), hooke_core::BuildError>(())

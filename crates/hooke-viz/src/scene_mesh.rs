@@ -1,13 +1,11 @@
 //! What a [`Scene`] looks like to the output layer: one [`Mesh`] for all of
 //! its bodies, and its obstacles as drawable [`Shape`]s at a given time.
 
-use hooke_core::System;
+use hooke_core::{Shape, System};
 use hooke_scenes::Scene;
-use nalgebra::Rotation3;
 
 use crate::error::OutputError;
 use crate::mesh::Mesh;
-use crate::shape::Shape;
 
 /// One mesh for every body of `scene`, in system particle indices.
 ///
@@ -33,7 +31,7 @@ use crate::shape::Shape;
 ///     integrator: IntegratorSpec::backward_euler(),
 ///     timing: Timing { duration: 1.0, dt: 0.01, frame_rate: 30.0 },
 /// };
-/// let mesh = hooke_cli::scene_mesh(&scene)?;
+/// let mesh = hooke_viz::scene_mesh(&scene)?;
 /// assert_eq!((mesh.vertex_count(), mesh.edges()), (2, &[[0, 1]][..]));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
@@ -83,33 +81,6 @@ pub fn obstacles_at(system: &System, t: f64) -> Vec<Shape> {
     system
         .obstacles()
         .iter()
-        .map(|obstacle| {
-            let offset = obstacle.path.offset(t);
-            match obstacle.shape {
-                hooke_core::Shape::Plane { point, normal } => Shape::Plane {
-                    point: point + offset,
-                    normal,
-                },
-                hooke_core::Shape::Sphere { center, radius } => Shape::Sphere {
-                    center: center + offset,
-                    radius,
-                },
-                hooke_core::Shape::Box {
-                    center,
-                    half_extents,
-                    rotation,
-                } => Shape::Box {
-                    center: center + offset,
-                    half_extents,
-                    // The system builder accepts only rotation matrices.
-                    rotation: Rotation3::from_matrix_unchecked(rotation),
-                },
-                hooke_core::Shape::Capsule { a, b, radius } => Shape::Capsule {
-                    a: a + offset,
-                    b: b + offset,
-                    radius,
-                },
-            }
-        })
+        .map(|obstacle| obstacle.shape.translated(obstacle.path.offset(t)))
         .collect()
 }
