@@ -1,6 +1,8 @@
 //! A pixmap with the few drawing operations the figures use: filled
-//! rectangles, poly-lines, markers and text in the embedded 8×8 bitmap font.
+//! rectangles, poly-lines, markers and text in the embedded 8×8 bitmap font;
+//! each operation is also recorded as SVG ([`Svg`]).
 
+use super::svg::Svg;
 use font8x8::{BASIC_FONTS, GREEK_FONTS, LATIN_FONTS, UnicodeFonts};
 use tiny_skia::{
     Color, ColorU8, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Rect, Stroke,
@@ -87,9 +89,10 @@ fn glyph(c: char) -> [u8; 8] {
         .unwrap_or_default()
 }
 
-/// The image being drawn.
+/// The image being drawn, as pixels and as SVG.
 pub(super) struct Canvas {
     pixmap: Pixmap,
+    svg: Svg,
 }
 
 impl Canvas {
@@ -100,22 +103,34 @@ impl Canvas {
         }
         let mut pixmap = Pixmap::new(width, height)?;
         pixmap.fill(Color::WHITE);
-        Some(Self { pixmap })
+        Some(Self {
+            pixmap,
+            svg: Svg::new(width, height),
+        })
     }
 
-    /// The finished image.
-    pub(super) fn into_pixmap(self) -> Pixmap {
-        self.pixmap
+    /// The finished image and its SVG document.
+    pub(super) fn finish(self) -> (Pixmap, String) {
+        (self.pixmap, self.svg.finish())
     }
 
     /// Fills the rectangle with corner `(x, y)` and the given size; an empty
     /// or non-finite rectangle draws nothing.
     pub(super) fn fill_rect(&mut self, x: f32, y: f32, width: f32, height: f32, color: ColorU8) {
-        if let Some(rect) = Rect::from_xywh(x, y, width, height) {
-            let paint = solid(color);
-            self.pixmap
-                .fill_rect(rect, &paint, Transform::identity(), None);
+        if self.fill_pixels(x, y, width, height, color) {
+            self.svg.rect(x, y, width, height, color);
         }
+    }
+
+    /// Fills the rectangle in the pixmap alone (a pixel of a glyph, which
+    /// the SVG draws as text); whether it was drawn.
+    fn fill_pixels(&mut self, x: f32, y: f32, width: f32, height: f32, color: ColorU8) -> bool {
+        let Some(rect) = Rect::from_xywh(x, y, width, height) else {
+            return false;
+        };
+        self.pixmap
+            .fill_rect(rect, &solid(color), Transform::identity(), None);
+        true
     }
 
     /// Strokes the open poly-line through `points`, dashed when `dash` gives
@@ -139,6 +154,7 @@ impl Canvas {
         let Some(path) = builder.finish() else {
             return;
         };
+        self.svg.polyline(points, color, width, dash);
         let stroke = Stroke {
             width,
             line_cap: LineCap::Butt,
@@ -164,16 +180,26 @@ impl Canvas {
     /// Fills a marker of the given shape centred on `(x, y)`, `size` pixels across.
     pub(super) fn marker(&mut self, shape: Marker, x: f32, y: f32, size: f32, color: ColorU8) {
         let r = size / 2.0;
-        let path = match shape {
-            Marker::Circle => PathBuilder::from_circle(x, y, r),
-            Marker::Square => Rect::from_xywh(x - r * 0.85, y - r * 0.85, size * 0.85, size * 0.85)
-                .map(PathBuilder::from_rect),
-            Marker::Triangle => {
-                polygon(&[(x, y - r * 1.1), (x + r, y + r * 0.8), (x - r, y + r * 0.8)])
+        let corners: &[(f32, f32)] = match shape {
+            Marker::Circle => &[],
+            Marker::Square => {
+                let h = r * 0.85;
+                &[
+                    (x - h, y - h),
+                    (x + h, y - h),
+                    (x + h, y + h),
+                    (x - h, y + h),
+                ]
             }
-            Marker::Diamond => {
-                polygon(&[(x, y - r * 1.2), (x + r, y), (x, y + r * 1.2), (x - r, y)])
-            }
+            Marker::Triangle => &[(x, y - r * 1.1), (x + r, y + r * 0.8), (x - r, y + r * 0.8)],
+            Marker::Diamond => &[(x, y - r * 1.2), (x + r, y), (x, y + r * 1.2), (x - r, y)],
+        };
+        let path = if corners.is_empty() {
+            self.svg.circle(x, y, r, color);
+            PathBuilder::from_circle(x, y, r)
+        } else {
+            self.svg.polygon(corners, color);
+            polygon(corners)
         };
         if let Some(path) = path {
             self.pixmap.fill_path(
@@ -199,8 +225,10 @@ impl Canvas {
     ) {
         let left = (x - offset(text, scale, align)).round();
         let top = y.round();
+        let box_size = (text_width(text, scale), text_height(scale));
+        self.svg.text(text, (left, top), box_size, color, false);
         self.glyph_runs(text, scale, |canvas, run_x, run_y, run_w, size| {
-            canvas.fill_rect(left + run_x, top + run_y, run_w, size, color);
+            canvas.fill_pixels(left + run_x, top + run_y, run_w, size, color);
         });
     }
 
@@ -217,8 +245,10 @@ impl Canvas {
     ) {
         let bottom = (y + offset(text, scale, align)).round();
         let left = x.round();
+        let box_size = (text_width(text, scale), text_height(scale));
+        self.svg.text(text, (left, bottom), box_size, color, true);
         self.glyph_runs(text, scale, |canvas, run_x, run_y, run_w, size| {
-            canvas.fill_rect(left + run_y, bottom - run_x - run_w, size, run_w, color);
+            canvas.fill_pixels(left + run_y, bottom - run_x - run_w, size, run_w, color);
         });
     }
 

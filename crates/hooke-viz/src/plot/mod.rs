@@ -1,6 +1,8 @@
-//! PNG figures of the lab's measurements: stability heat maps
+//! Figures of the lab's measurements: stability heat maps
 //! ([`write_heat_maps`]) and log-log line plots ([`write_log_log`]) such as
-//! error against run time or against timestep.
+//! error against run time or against timestep, each written as a PNG and,
+//! beside it, as an SVG of the same drawing ([`svg_path`]): vector, for
+//! papers, with its text as text.
 //!
 //! The module takes plain data (names, numbers, cells) and knows nothing else
 //! of the lab. Figures are drawn with `tiny-skia`, which the workspace already
@@ -9,7 +11,19 @@
 //! its own), each font pixel drawn as a 2 × 2 square (3 × 3 for titles). No
 //! system font is looked up, so figures come out the same on a machine with
 //! no fonts installed. The font covers ASCII, Latin-1 and Greek; other
-//! characters are drawn as `?`.
+//! characters are drawn as `?`. The SVG sets the same text in the viewer's
+//! monospace font, stretched to the bitmap text's width.
+//!
+//! A plotting crate was measured instead of this module: `plotters` 0.3
+//! with its default features pulls in 46 crates, among them `font-kit`,
+//! `freetype-sys` and `yeslogic-fontconfig-sys`, which build C code and
+//! look fonts up on the system; reduced to its SVG and bitmap backends with
+//! an embedded-font renderer (`ab_glyph`) it still adds 26 (`image` 0.24,
+//! `jpeg-decoder`, `ttf-parser`, a second `png`), needs a TrueType font
+//! shipped with the crate, and would not replace `tiny-skia`, which the
+//! frame renderer uses. Recording each drawing call of this module as an
+//! SVG element costs about 150 lines and no dependency, and the PNG and SVG
+//! of a figure cannot disagree.
 //!
 //! Axes are logarithmic, ticked at powers of ten and labelled `1e-3`,
 //! `1e-2`, ... (every second or fifth decade when labels would overlap; at
@@ -24,6 +38,7 @@ mod axis;
 mod canvas;
 mod heat_map;
 mod log_log;
+mod svg;
 #[cfg(test)]
 mod tests;
 
@@ -114,19 +129,32 @@ pub enum GridError {
     },
 }
 
-/// Encodes the canvas as PNG and writes it to `path`.
+/// Encodes the canvas as PNG and writes it to `path`, and its SVG twin to
+/// [`svg_path`]`(path)`.
 fn save(canvas: Canvas, path: &Path) -> Result<(), PlotError> {
-    let png = canvas
-        .into_pixmap()
-        .encode_png()
-        .map_err(|e| PlotError::Encode {
-            path: path.to_owned(),
-            message: e.to_string(),
-        })?;
-    std::fs::write(path, png).map_err(|source| PlotError::Io {
+    let (pixmap, svg) = canvas.finish();
+    let png = pixmap.encode_png().map_err(|e| PlotError::Encode {
         path: path.to_owned(),
-        source,
-    })
+        message: e.to_string(),
+    })?;
+    let write = |path: PathBuf, bytes: &[u8]| {
+        std::fs::write(&path, bytes).map_err(|source| PlotError::Io { path, source })
+    };
+    write(path.to_owned(), &png)?;
+    write(svg_path(path), svg.as_bytes())
+}
+
+/// Where a figure written to `path` puts its SVG: the same name with the
+/// extension `svg`.
+///
+/// ```
+/// use std::path::Path;
+/// let svg = hooke_viz::plot::svg_path(Path::new("out/stability.png"));
+/// assert_eq!(svg, Path::new("out/stability.svg"));
+/// ```
+#[must_use]
+pub fn svg_path(path: &Path) -> PathBuf {
+    path.with_extension("svg")
 }
 
 /// Draws tick marks and labels below and left of the plot area

@@ -136,3 +136,57 @@ fn convergence_plot_with_bad_and_missing_points_is_written() {
     keep(&path);
     assert_eq!(load(&path).width(), LOG_LOG_WIDTH);
 }
+
+/// The `(cx, cy)` of every circle in an SVG document.
+fn circles(svg: &str) -> Vec<(f32, f32)> {
+    let attribute = |element: &str, name: &str| -> f32 {
+        let start = element.find(&format!(" {name}=\"")).expect("attribute") + name.len() + 3;
+        let end = start + element[start..].find('"').expect("closing quote");
+        element[start..end].parse().expect("a number")
+    };
+    svg.lines()
+        .filter(|line| line.starts_with("<circle"))
+        .map(|line| (attribute(line, "cx"), attribute(line, "cy")))
+        .collect()
+}
+
+#[test]
+fn every_figure_has_an_svg_twin_with_its_markers_in_place_and_its_text_as_text() {
+    let dir = TempDir::new().expect("temporary directory");
+    let single = LogLogPlot {
+        series: vec![Series {
+            label: "one & only".to_owned(),
+            points: vec![(1e-3, 1e-6), (f64::NAN, 1.0), (1e-1, 1e-2)],
+        }],
+        reference: None,
+        ..sample_work_precision()
+    };
+    let path = dir.path().join("single.png");
+    write_log_log(&single, &path).expect("figure written");
+    let svg = std::fs::read_to_string(svg_path(&path)).expect("the SVG beside the PNG");
+    assert!(svg.starts_with("<?xml") && svg.trim_end().ends_with("</svg>"));
+    assert!(svg.contains(&format!("viewBox=\"0 0 {LOG_LOG_WIDTH} {LOG_LOG_HEIGHT}\"")));
+    assert!(svg.contains(">Work-precision: hanging cloth 20 × 20</text>"));
+    assert!(svg.contains(">one &amp; only</text>"));
+    // The two finite points, where the PNG has them (see above), and the
+    // legend's marker.
+    let (x, y, w, h) = plot_area(&single);
+    let drawn = circles(&svg);
+    assert_eq!(drawn.len(), 3, "{drawn:?}");
+    for (px, py) in [
+        (x + w * 0.1 / 2.2, y + h - h * 0.2 / 4.4),
+        (x + w * 2.1 / 2.2, y + h - h * 4.2 / 4.4),
+    ] {
+        assert!(
+            drawn
+                .iter()
+                .any(|&(cx, cy)| (cx - px).abs() < 0.01 && (cy - py).abs() < 0.01),
+            "no marker at ({px}, {py}) in {drawn:?}"
+        );
+    }
+
+    let path = dir.path().join("maps.png");
+    write_heat_maps(&super::heat_map::sample_maps(), &path).expect("figure written");
+    let svg = std::fs::read_to_string(svg_path(&path)).expect("the SVG beside the PNG");
+    assert!(svg.contains("<rect") && svg.contains("</text>"));
+}
