@@ -11,8 +11,11 @@
 pub mod accuracy;
 mod budget;
 mod error;
+mod json;
+pub mod merge;
 mod range;
 mod settings;
+mod shard;
 mod spectrum;
 pub mod stability;
 
@@ -22,5 +25,6 @@ pub use error::LabError;
 pub use hooke_scenes::{Method, OscillatorStability};
 pub use range::Range;
 pub use settings::Settings;
+pub use shard::{Shard, interleave};
 pub use spectrum::{MAX_ITERATIONS, Spectrum, omega_max};
 pub use stability::{StabilityOptions, StabilityReport, stability};

@@ -38,14 +38,14 @@
 
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use hooke_core::{Simulation, System};
 use hooke_scenes::Scene;
 
 use crate::budget::EnergyBudget;
 use crate::spectrum::{Spectrum, omega_max};
-use crate::{LabError, Range};
+use crate::{LabError, Range, Shard};
 use crate::{Method, Settings};
 
 /// The default energy bound of a stable cell.
@@ -71,6 +71,9 @@ pub struct StabilityOptions {
     /// Also bisect for each method's largest stable step at this stiffness
     /// scale, searching the range of `dts`.
     pub limit_scale: Option<f64>,
+    /// Run only this part of the cells and limit searches: the report is
+    /// then partial, for [`merge`](crate::merge).
+    pub shard: Option<Shard>,
 }
 
 impl StabilityOptions {
@@ -89,6 +92,7 @@ impl StabilityOptions {
             energy_bound: DEFAULT_ENERGY_BOUND,
             settings: Settings::from_scene(&scene.integrator),
             limit_scale: None,
+            shard: None,
         }
     }
 
@@ -117,10 +121,10 @@ impl StabilityOptions {
 }
 
 /// One run of the sweep.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Cell {
-    /// The method's name.
-    pub integrator: &'static str,
+    /// The method.
+    pub integrator: Method,
     /// The stiffness scale.
     pub stiffness_scale: f64,
     /// The step, s.
@@ -129,6 +133,7 @@ pub struct Cell {
     pub stable: bool,
     /// The largest energy ratio seen (`null` in JSON once it was not
     /// finite).
+    #[serde(deserialize_with = "crate::json::number")]
     pub max_energy_ratio: f64,
     /// `dt · ω_max` at this stiffness.
     pub h_omega: f64,
@@ -141,10 +146,10 @@ pub struct Cell {
 }
 
 /// A method's largest stable step.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Limit {
-    /// The method's name.
-    pub integrator: &'static str,
+    /// The method.
+    pub integrator: Method,
     /// The stiffness scale searched at.
     pub stiffness_scale: f64,
     /// The largest stable step found, s: `null` when every step up to
@@ -159,7 +164,7 @@ pub struct Limit {
 }
 
 /// The sweep's results; serialises to `stability.json`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StabilityReport {
     /// The scene's name.
     pub scene: String,
@@ -169,6 +174,12 @@ pub struct StabilityReport {
     pub duration: f64,
     /// Fewest steps per cell.
     pub min_steps: usize,
+    /// The methods swept, in report order.
+    pub methods: Vec<Method>,
+    /// The stiffness scales swept.
+    pub stiffness_scales: Vec<f64>,
+    /// The steps swept, s.
+    pub dts: Vec<f64>,
     /// `ω_max` at stiffness scale 1, rad/s.
     pub omega_max: f64,
     /// Gershgorin upper bound on `ω_max` at scale 1, rad/s.
@@ -177,8 +188,12 @@ pub struct StabilityReport {
     pub cells: Vec<Cell>,
     /// Each method's largest stable step, when a limit search was asked
     /// for.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub limits: Option<Vec<Limit>>,
+    /// The part of the cells (and limit searches) this report holds, if it
+    /// is partial (see [`merge`](crate::merge)).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shard: Option<Shard>,
 }
 
 /// The number of steps a cell at `dt` takes.
@@ -258,7 +273,7 @@ pub fn stability(
         .map(|&s| scene.system.with_stiffness_scale(s))
         .collect::<Result<Vec<_>, _>>()?;
 
-    let jobs: Vec<(Method, usize, f64)> = options
+    let mut jobs: Vec<(Method, usize, f64)> = options
         .methods
         .iter()
         .flat_map(|&m| {
@@ -266,6 +281,9 @@ pub fn stability(
                 .flat_map(move |k| options.dts.iter().map(move |&dt| (m, k, dt)))
         })
         .collect();
+    if let Some(shard) = options.shard {
+        jobs = shard.deal(&jobs);
+    }
     let total = jobs.len();
     let done = std::sync::atomic::AtomicUsize::new(0);
     let cell = |&(method, k, dt): &(Method, usize, f64)| -> Result<Cell, LabError> {
@@ -282,7 +300,7 @@ pub fn stability(
         let finished = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         progress(finished, total);
         Ok(Cell {
-            integrator: method.name(),
+            integrator: method,
             stiffness_scale: scale,
             dt,
             stable: run.stable,
@@ -314,10 +332,14 @@ pub fn stability(
         energy_bound: options.energy_bound,
         duration: options.duration,
         min_steps: options.min_steps,
+        methods: options.methods.clone(),
+        stiffness_scales: options.scales.clone(),
+        dts: options.dts.clone(),
         omega_max: spectrum.omega_max,
         omega_max_bound: spectrum.omega_bound,
         cells,
         limits,
+        shard: options.shard,
     })
 }
 
@@ -360,7 +382,7 @@ fn limits(
     };
     let search = |&method: &Method| -> Result<Limit, LabError> {
         let mut limit = Limit {
-            integrator: method.name(),
+            integrator: method,
             stiffness_scale: scale,
             max_stable_dt: None,
             h_omega_limit: None,
@@ -395,9 +417,13 @@ fn limits(
         }
         Ok(limit)
     };
+    let methods = match options.shard {
+        Some(shard) => shard.deal(&options.methods),
+        None => options.methods.clone(),
+    };
     #[cfg(feature = "parallel")]
-    let found = options.methods.par_iter().map(search).collect();
+    let found = methods.par_iter().map(search).collect();
     #[cfg(not(feature = "parallel"))]
-    let found = options.methods.iter().map(search).collect();
+    let found = methods.iter().map(search).collect();
     found
 }

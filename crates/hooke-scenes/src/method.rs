@@ -6,6 +6,7 @@ use std::f64::consts::SQRT_2;
 use std::fmt;
 
 use hooke_explicit::{DormandPrince, ExplicitMethod};
+use serde::{Deserialize, Deserializer, Serialize, Serializer, de};
 
 /// An integrator of hooke: one of the ten fixed-step explicit methods,
 /// adaptive Dormand–Prince, backward Euler or BDF2. Its parameters come
@@ -139,6 +140,25 @@ impl Method {
                 OscillatorStability::Unconditional
             }
         }
+    }
+}
+
+/// A method is written as its name, e.g. `"rk4"`, in reports.
+impl Serialize for Method {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for Method {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        Self::from_name(&name).ok_or_else(|| {
+            de::Error::custom(format!(
+                "no integrator \"{name}\"; one of {}",
+                Self::names()
+            ))
+        })
     }
 }
 
