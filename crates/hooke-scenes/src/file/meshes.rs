@@ -7,10 +7,10 @@ use hooke_core::Vec3;
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::bodies::{At, Built, Common, PinNames, family, scale};
+use super::bodies::{At, Built, PinNames, family, finish, scale, shared};
 use super::error::{SceneFileError, Source};
 use super::schema::{MovingPin, PinRef, SpringsTable, Vector};
-use super::values::{key, mass, positive, vector};
+use super::values::{key, positive, vector};
 use crate::{Layered, SceneError, Shell, Solid, TetMesh, TriangleMesh, obj, tetgen};
 
 /// Where a scene's mesh files come from.
@@ -124,20 +124,18 @@ pub(crate) fn tet_mesh(
     if let Some(s) = family(src, t.edges.as_ref(), &at.key, "edges")? {
         solid = solid.edges(s);
     }
-    if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m³")? {
-        solid = solid.mass(m);
-    }
-    Ok(Built {
-        body: solid
-            .build()
-            .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?,
-        names: PinNames::None,
-        common: Common {
-            name: t.name,
-            pins: t.pins,
-            moving_pins: t.moving_pins,
-        },
-    })
+    let built_at = At {
+        key: mesh_key,
+        span: t.mesh.span(),
+    };
+    finish(
+        src,
+        at,
+        &built_at,
+        solid,
+        shared!(t),
+        ("kg/m³", PinNames::None),
+    )
 }
 
 /// `type = "obj"`.
@@ -185,20 +183,18 @@ pub(crate) fn obj_shell(
     if let Some(s) = family(src, t.bend.as_ref(), &at.key, "bend")? {
         shell = shell.bend(s);
     }
-    if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m²")? {
-        shell = shell.mass(m);
-    }
-    Ok(Built {
-        body: shell
-            .build()
-            .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?,
-        names: PinNames::None,
-        common: Common {
-            name: t.name,
-            pins: t.pins,
-            moving_pins: t.moving_pins,
-        },
-    })
+    let built_at = At {
+        key: mesh_key,
+        span: t.mesh.span(),
+    };
+    finish(
+        src,
+        at,
+        &built_at,
+        shell,
+        shared!(t),
+        ("kg/m²", PinNames::None),
+    )
 }
 
 /// `type = "layered"`.
@@ -252,18 +248,16 @@ pub(crate) fn layered(
     if let Some(s) = family(src, t.cross.as_ref(), &at.key, "cross")? {
         body = body.cross(s);
     }
-    if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m³")? {
-        body = body.mass(m);
-    }
-    Ok(Built {
-        body: body
-            .build()
-            .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?,
-        names: PinNames::None,
-        common: Common {
-            name: t.name,
-            pins: t.pins,
-            moving_pins: t.moving_pins,
-        },
-    })
+    let built_at = At {
+        key: mesh_key,
+        span: t.mesh.span(),
+    };
+    finish(
+        src,
+        at,
+        &built_at,
+        body,
+        shared!(t),
+        ("kg/m³", PinNames::None),
+    )
 }
