@@ -36,17 +36,21 @@
 //! bound reports the point where the energy error becomes large rather
 //! than where the motion starts to grow.
 
+mod cell;
+mod limit;
+
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use hooke_core::{Simulation, System};
 use hooke_scenes::Scene;
 
-use crate::budget::EnergyBudget;
 use crate::spectrum::{Spectrum, omega_max};
-use crate::{LabError, Range, Shard};
-use crate::{Method, Settings};
+use crate::{LabError, Method, Range, Settings, Shard};
+use cell::cell_steps;
+pub use cell::{CellRun, run_cell};
+pub use limit::LIMIT_SEARCH_H_OMEGA;
+use limit::limits;
 
 /// The default energy bound of a stable cell.
 pub const DEFAULT_ENERGY_BOUND: f64 = 10.0;
@@ -196,63 +200,6 @@ pub struct StabilityReport {
     pub shard: Option<Shard>,
 }
 
-/// The number of steps a cell at `dt` takes.
-fn cell_steps(duration: f64, min_steps: usize, dt: f64) -> usize {
-    ((duration / dt).ceil() as usize).max(min_steps)
-}
-
-/// One cell's run, before it is placed in the sweep.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CellRun {
-    /// Whether every step succeeded and the energy ratio stayed within
-    /// the bound.
-    pub stable: bool,
-    /// The largest energy ratio seen.
-    pub max_energy_ratio: f64,
-    /// Wall time inside the integrator's steps, s.
-    pub wall_s: f64,
-    /// Steps taken.
-    pub steps: usize,
-    /// Why the run stopped early, if it did.
-    pub stopped: Option<String>,
-}
-
-/// Runs `method` on `system` at `dt` for `steps` steps and classifies it.
-///
-/// # Errors
-/// [`LabError::Parameter`] if the method's parameters are out of range.
-pub fn run_cell(
-    system: &System,
-    method: Method,
-    settings: &Settings,
-    dt: f64,
-    steps: usize,
-    energy_bound: f64,
-) -> Result<CellRun, LabError> {
-    let mut integrator = settings.build(method, None)?;
-    let mut budget = EnergyBudget::new(system).with_bound(energy_bound);
-    let mut state = system.initial_state();
-    let run = Simulation::new(system, &mut integrator)
-        .observe(1, &mut budget)
-        .run_to_end(&mut state, dt, steps);
-    let stopped = match (run.failure(), budget.exceeded()) {
-        (Some(error), _) => Some(error.to_string()),
-        (None, true) => Some(format!(
-            "energy ratio {:.3e} above the bound {energy_bound} at t = {:.6e} s",
-            budget.max_ratio(),
-            state.time()
-        )),
-        (None, false) => None,
-    };
-    Ok(CellRun {
-        stable: stopped.is_none(),
-        max_energy_ratio: budget.max_ratio(),
-        wall_s: run.wall.as_secs_f64(),
-        steps: run.steps,
-        stopped,
-    })
-}
-
 /// Runs the sweep (and the limit search, if asked for) on `scene`,
 /// calling `progress(done, total)` as cells finish; cells run in parallel
 /// with the `parallel` feature.
@@ -341,89 +288,4 @@ pub fn stability(
         limits,
         shard: options.shard,
     })
-}
-
-/// Relative width at which the bisection stops.
-const LIMIT_PRECISION: f64 = 1e-4;
-
-/// The largest `h·ω_max` the limit search tries.
-pub const LIMIT_SEARCH_H_OMEGA: f64 = 1e3;
-
-/// Each method's largest stable step at stiffness `scale`: from the
-/// smallest of `options.dts` the step doubles until a run is unstable (or
-/// passes both the largest of `options.dts` and `h·ω_max =`
-/// [`LIMIT_SEARCH_H_OMEGA`]), then a geometric bisection narrows the
-/// bracket to a relative width of 10⁻⁴. The search assumes that stability
-/// is lost once, at one step; the methods run in parallel.
-fn limits(
-    scene: &Scene,
-    options: &StabilityOptions,
-    scale: f64,
-    omega_max: f64,
-) -> Result<Vec<Limit>, LabError> {
-    let system = scene.system.with_stiffness_scale(scale)?;
-    let lowest = options.dts.iter().copied().fold(f64::INFINITY, f64::min);
-    let omega = omega_max * scale.sqrt();
-    let mut highest = options.dts.iter().copied().fold(0.0, f64::max);
-    if omega > 0.0 {
-        highest = highest.max(LIMIT_SEARCH_H_OMEGA / omega);
-    }
-    let stable_at = |method: Method, dt: f64| -> Result<bool, LabError> {
-        let steps = cell_steps(options.duration, options.min_steps, dt);
-        Ok(run_cell(
-            &system,
-            method,
-            &options.settings,
-            dt,
-            steps,
-            options.energy_bound,
-        )?
-        .stable)
-    };
-    let search = |&method: &Method| -> Result<Limit, LabError> {
-        let mut limit = Limit {
-            integrator: method,
-            stiffness_scale: scale,
-            max_stable_dt: None,
-            h_omega_limit: None,
-            searched_up_to: lowest,
-            searched_down_to: lowest,
-        };
-        if !stable_at(method, lowest)? {
-            return Ok(limit);
-        }
-        let (mut lo, mut hi) = (lowest, None);
-        while lo < highest {
-            let next = (2.0 * lo).min(highest);
-            limit.searched_up_to = next;
-            if stable_at(method, next)? {
-                lo = next;
-            } else {
-                hi = Some(next);
-                break;
-            }
-        }
-        if let Some(mut hi) = hi {
-            while hi / lo > 1.0 + LIMIT_PRECISION {
-                let mid = (lo * hi).sqrt();
-                if stable_at(method, mid)? {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            limit.max_stable_dt = Some(lo);
-            limit.h_omega_limit = Some(lo * omega);
-        }
-        Ok(limit)
-    };
-    let methods = match options.shard {
-        Some(shard) => shard.deal(&options.methods),
-        None => options.methods.clone(),
-    };
-    #[cfg(feature = "parallel")]
-    let found = methods.par_iter().map(search).collect();
-    #[cfg(not(feature = "parallel"))]
-    let found = methods.iter().map(search).collect();
-    found
 }
