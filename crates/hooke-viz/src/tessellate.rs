@@ -216,7 +216,7 @@ mod tests {
             },
         ];
         for shape in &shapes {
-            let bounds = crate::shape_bounds(&shape).unwrap();
+            let bounds = crate::shape_bounds(shape).unwrap();
             let facets = facets(shape);
             assert!(!facets.is_empty());
             for f in &facets {

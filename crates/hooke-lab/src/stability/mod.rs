@@ -4,7 +4,7 @@
 //! A *cell* runs one method on the scene's system with every spring's
 //! stiffness multiplied by a scale `s`, at one step `dt`, for
 //! `max(duration / dt, min_steps)` steps. It is **stable** when every step
-//! succeeds with a finite state and the [`EnergyBudget`] ratio never exceeds
+//! succeeds with a finite state and the [`EnergyBudget`](crate::EnergyBudget) ratio never exceeds
 //! `energy_bound` (default [`DEFAULT_ENERGY_BOUND`]):
 //!
 //! ```text
@@ -13,7 +13,7 @@
 //!
 //! with `E` the kinetic energy of the free particles plus the elastic
 //! energy and `W` the work of gravity and scripted pins (see
-//! [`EnergyBudget`]). A cell stops at the first step that breaks this, so
+//! [`EnergyBudget`](crate::EnergyBudget)). A cell stops at the first step that breaks this, so
 //! an unstable cell's `max_energy_ratio` is the first ratio above the
 //! bound, not the largest the run would have reached.
 //!

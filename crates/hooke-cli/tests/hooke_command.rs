@@ -12,7 +12,7 @@ fn hooke(args: &[&str]) -> std::process::Output {
 
 #[test]
 fn check_of_the_default_scene_succeeds() {
-    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/stiff-cloth.toml");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/stiff-cloth.toml");
     let output = hooke(&["check", scene]);
     assert!(output.status.success());
     let text = String::from_utf8(output.stdout).unwrap();
