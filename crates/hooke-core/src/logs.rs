@@ -51,21 +51,6 @@ impl EnergyLog {
     }
 }
 
-impl Observer for EnergyLog {
-    fn start(&mut self, system: &System, state: &State) {
-        self.record(system, state);
-    }
-
-    fn observe(&mut self, system: &System, state: &State, _step: &StepInfo) -> ControlFlow<()> {
-        self.record(system, state);
-        ControlFlow::Continue(())
-    }
-
-    fn finish(&mut self, system: &System, state: &State, _run: &Run) {
-        self.record(system, state);
-    }
-}
-
 /// Records the largest spring strain `|l − L|/L` at the start, at every
 /// observed step and at the end of the run.
 #[derive(Debug, Clone, Default)]
@@ -103,17 +88,24 @@ impl StrainLog {
     }
 }
 
-impl Observer for StrainLog {
-    fn start(&mut self, system: &System, state: &State) {
-        self.record(system, state);
-    }
+/// A log records the state at the start, at every observed step and at the
+/// end.
+macro_rules! sampling_observer {
+    ($($log:ty),*) => {$(
+        impl Observer for $log {
+            fn start(&mut self, system: &System, state: &State) {
+                self.record(system, state);
+            }
 
-    fn observe(&mut self, system: &System, state: &State, _step: &StepInfo) -> ControlFlow<()> {
-        self.record(system, state);
-        ControlFlow::Continue(())
-    }
+            fn observe(&mut self, system: &System, state: &State, _: &StepInfo) -> ControlFlow<()> {
+                self.record(system, state);
+                ControlFlow::Continue(())
+            }
 
-    fn finish(&mut self, system: &System, state: &State, _run: &Run) {
-        self.record(system, state);
-    }
+            fn finish(&mut self, system: &System, state: &State, _run: &Run) {
+                self.record(system, state);
+            }
+        }
+    )*};
 }
+sampling_observer!(EnergyLog, StrainLog);

@@ -7,12 +7,11 @@ use std::path::Path;
 
 use clap::Args;
 use hooke_lab::accuracy::{ReferenceKind, Series as RunSeries};
-use hooke_lab::{AccuracyOptions, AccuracyReport, accuracy};
+use hooke_lab::{AccuracyOptions, AccuracyReport, Shard, accuracy};
 use hooke_viz::plot::{LogLogPlot, Reference, Series, write_log_log};
 
 use super::files::{
-    ACCURACY_JSON, CONVERGENCE_PNG, RUN_COLUMNS, WORK_PRECISION_PNG, partial_name, run_row,
-    write_report,
+    ACCURACY_JSON, CONVERGENCE_PNG, LabReport, RUN_COLUMNS, WORK_PRECISION_PNG, run_row, write,
 };
 use super::{SceneArgs, Values};
 use crate::cli_error::CliError;
@@ -86,21 +85,7 @@ pub(crate) fn accuracy_command(args: &AccuracyArgs, out: &mut dyn Write) -> Resu
     let report = args
         .scene
         .measure("runs", |progress| accuracy(&scene, &options, progress))?;
-    let dir = &args.scene.out;
-    if let Some(shard) = report.shard {
-        let name = partial_name(ACCURACY_JSON, shard);
-        write_report(
-            dir,
-            &name,
-            &report,
-            &RUN_COLUMNS,
-            report.runs.iter().map(run_row),
-        )?;
-        writeln!(out, "wrote {}/{name}", dir.display())?;
-        return Ok(());
-    }
-    write_accuracy(&report, dir)?;
-    Ok(print_accuracy(&report, dir, out)?)
+    write(&report, &args.scene.out, out)
 }
 
 fn plot_series(series: Vec<RunSeries>) -> Vec<Series> {
@@ -114,9 +99,7 @@ fn plot_series(series: Vec<RunSeries>) -> Vec<Series> {
 }
 
 /// Writes `accuracy.json`, `accuracy.csv` and the figures.
-pub(super) fn write_accuracy(report: &AccuracyReport, dir: &Path) -> Result<(), CliError> {
-    let rows = report.runs.iter().map(run_row);
-    write_report(dir, ACCURACY_JSON, report, &RUN_COLUMNS, rows)?;
+fn figures(report: &AccuracyReport, dir: &Path) -> Result<(), CliError> {
     let plot = |e| CliError::Plot(Box::new(e));
     write_log_log(
         &LogLogPlot {
@@ -146,11 +129,7 @@ pub(super) fn write_accuracy(report: &AccuracyReport, dir: &Path) -> Result<(), 
 }
 
 /// Prints what the measurement found and where its files are.
-pub(super) fn print_accuracy(
-    report: &AccuracyReport,
-    dir: &Path,
-    out: &mut dyn Write,
-) -> std::io::Result<()> {
+fn print_accuracy(report: &AccuracyReport, dir: &Path, out: &mut dyn Write) -> std::io::Result<()> {
     let reference = &report.reference;
     writeln!(
         out,
@@ -194,4 +173,25 @@ pub(super) fn print_accuracy(
          {d}/{CONVERGENCE_PNG} (and .svg)",
         d = dir.display()
     )
+}
+
+impl LabReport for AccuracyReport {
+    const JSON: &'static str = ACCURACY_JSON;
+    const COLUMNS: &'static [&'static str] = RUN_COLUMNS;
+
+    fn shard(&self) -> Option<Shard> {
+        self.shard
+    }
+
+    fn rows(&self) -> Vec<Vec<String>> {
+        self.runs.iter().map(run_row).collect()
+    }
+
+    fn figures(&self, dir: &Path) -> Result<(), CliError> {
+        figures(self, dir)
+    }
+
+    fn print(&self, dir: &Path, out: &mut dyn Write) -> std::io::Result<()> {
+        print_accuracy(self, dir, out)
+    }
 }

@@ -33,7 +33,7 @@ pub(super) fn create_dir(dir: &Path) -> Result<(), CliError> {
 
 /// The partial report of `shard` of the report `name` (`stability.json`):
 /// `stability.shard-I-of-N.json`.
-pub(super) fn partial_name(name: &str, shard: Shard) -> String {
+fn partial_name(name: &str, shard: Shard) -> String {
     let stem = name.trim_end_matches(".json");
     format!("{stem}.shard-{}-of-{}.json", shard.index, shard.count)
 }
@@ -78,7 +78,7 @@ pub(super) fn read_partials<R: DeserializeOwned>(
 
 /// Writes `report` as `dir/name` and `rows` as the CSV table beside it
 /// (`name` with the extension `csv`).
-pub(super) fn write_report(
+fn write_report(
     dir: &Path,
     name: &str,
     report: &impl serde::Serialize,
@@ -94,6 +94,41 @@ pub(super) fn write_report(
     }
     let csv = path.with_extension("csv");
     std::fs::write(&csv, text).map_err(|source| CliError::WriteSummary { path: csv, source })
+}
+
+/// A report of the lab as the commands write it.
+pub(super) trait LabReport: serde::Serialize {
+    /// The whole report's file name, e.g. `stability.json`.
+    const JSON: &'static str;
+    /// The columns of its CSV table.
+    const COLUMNS: &'static [&'static str];
+    /// The part of the sweep it holds, if it is partial.
+    fn shard(&self) -> Option<Shard>;
+    /// The rows of its CSV table.
+    fn rows(&self) -> Vec<Vec<String>>;
+    /// Draws its figures into `dir`.
+    fn figures(&self, dir: &Path) -> Result<(), CliError>;
+    /// Prints what it found and where its files are.
+    fn print(&self, dir: &Path, out: &mut dyn std::io::Write) -> std::io::Result<()>;
+}
+
+/// Writes `report` into `dir`: a partial one as `NAME.shard-I-of-N.json`
+/// with its CSV, a whole one as its JSON, CSV and figures, then says what
+/// it wrote on `out`.
+pub(super) fn write<R: LabReport>(
+    report: &R,
+    dir: &Path,
+    out: &mut dyn std::io::Write,
+) -> Result<(), CliError> {
+    let rows = report.rows().into_iter();
+    if let Some(shard) = report.shard() {
+        let name = partial_name(R::JSON, shard);
+        write_report(dir, &name, report, R::COLUMNS, rows)?;
+        return Ok(writeln!(out, "wrote {}/{name}", dir.display())?);
+    }
+    write_report(dir, R::JSON, report, R::COLUMNS, rows)?;
+    report.figures(dir)?;
+    Ok(report.print(dir, out)?)
 }
 
 /// One CSV line; a field with a comma, a quote or a line break is quoted.
@@ -117,7 +152,7 @@ fn field(value: Option<impl Display>) -> String {
 }
 
 /// The columns of `stability.csv`.
-pub(super) const CELL_COLUMNS: [&str; 9] = [
+pub(super) const CELL_COLUMNS: &[&str] = &[
     "integrator",
     "stiffness_scale",
     "dt",
@@ -145,7 +180,7 @@ pub(super) fn cell_row(c: &Cell) -> Vec<String> {
 }
 
 /// The columns of `accuracy.csv`.
-pub(super) const RUN_COLUMNS: [&str; 13] = [
+pub(super) const RUN_COLUMNS: &[&str] = &[
     "integrator",
     "dt",
     "step",

@@ -7,9 +7,7 @@ use std::path::PathBuf;
 use clap::Args;
 use hooke_lab::{AccuracyReport, StabilityReport};
 
-use super::accuracy::{print_accuracy, write_accuracy};
-use super::files::{ACCURACY_JSON, STABILITY_JSON, read_partials};
-use super::stability::{print_stability, write_stability};
+use super::files::{ACCURACY_JSON, STABILITY_JSON, read_partials, write};
 use crate::cli_error::CliError;
 
 /// `hooke merge`'s arguments.
@@ -37,14 +35,12 @@ pub(crate) fn merge_command(args: &MergeArgs, out: &mut dyn Write) -> Result<(),
     if !stability.is_empty() {
         writeln!(out, "merging {} stability parts", stability.len())?;
         let report = StabilityReport::merge(stability.into_iter().map(|(_, r)| r).collect())?;
-        write_stability(&report, &args.out)?;
-        print_stability(&report, &args.out, out)?;
+        write(&report, &args.out, out)?;
     }
     if !accuracy.is_empty() {
         writeln!(out, "merging {} accuracy parts", accuracy.len())?;
         let report = AccuracyReport::merge(accuracy.into_iter().map(|(_, r)| r).collect())?;
-        write_accuracy(&report, &args.out)?;
-        print_accuracy(&report, &args.out, out)?;
+        write(&report, &args.out, out)?;
     }
     Ok(())
 }

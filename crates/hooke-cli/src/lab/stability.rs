@@ -5,12 +5,10 @@ use std::io::Write;
 use std::path::Path;
 
 use clap::Args;
-use hooke_lab::{Method, StabilityOptions, StabilityReport, stability};
+use hooke_lab::{Method, Shard, StabilityOptions, StabilityReport, stability};
 use hooke_viz::plot::{Cell, HeatMapPanel, HeatMaps, write_heat_maps};
 
-use super::files::{
-    CELL_COLUMNS, STABILITY_JSON, STABILITY_PNG, cell_row, partial_name, write_report,
-};
+use super::files::{CELL_COLUMNS, LabReport, STABILITY_JSON, STABILITY_PNG, cell_row, write};
 use super::{SceneArgs, Values};
 use crate::cli_error::CliError;
 
@@ -81,27 +79,11 @@ pub(crate) fn stability_command(args: &StabilityArgs, out: &mut dyn Write) -> Re
     let report = args
         .scene
         .measure("cells", |progress| stability(&scene, &options, progress))?;
-    let dir = &args.scene.out;
-    if let Some(shard) = report.shard {
-        let name = partial_name(STABILITY_JSON, shard);
-        write_report(
-            dir,
-            &name,
-            &report,
-            &CELL_COLUMNS,
-            report.cells.iter().map(cell_row),
-        )?;
-        writeln!(out, "wrote {}/{name}", dir.display())?;
-        return Ok(());
-    }
-    write_stability(&report, dir)?;
-    Ok(print_stability(&report, dir, out)?)
+    write(&report, &args.scene.out, out)
 }
 
 /// Writes `stability.json`, `stability.csv` and the figure.
-pub(super) fn write_stability(report: &StabilityReport, dir: &Path) -> Result<(), CliError> {
-    let rows = report.cells.iter().map(cell_row);
-    write_report(dir, STABILITY_JSON, report, &CELL_COLUMNS, rows)?;
+fn figures(report: &StabilityReport, dir: &Path) -> Result<(), CliError> {
     let path = dir.join(STABILITY_PNG);
     write_heat_maps(&heat_maps(report), &path).map_err(|e| CliError::Plot(Box::new(e)))
 }
@@ -145,7 +127,7 @@ fn heat_maps(report: &StabilityReport) -> HeatMaps {
 }
 
 /// Prints what the sweep found and where its files are.
-pub(super) fn print_stability(
+fn print_stability(
     report: &StabilityReport,
     dir: &Path,
     out: &mut dyn Write,
@@ -212,4 +194,25 @@ pub(super) fn print_stability(
         "wrote {d}/{STABILITY_JSON} (and .csv) and {d}/{STABILITY_PNG} (and .svg)",
         d = dir.display()
     )
+}
+
+impl LabReport for StabilityReport {
+    const JSON: &'static str = STABILITY_JSON;
+    const COLUMNS: &'static [&'static str] = CELL_COLUMNS;
+
+    fn shard(&self) -> Option<Shard> {
+        self.shard
+    }
+
+    fn rows(&self) -> Vec<Vec<String>> {
+        self.cells.iter().map(cell_row).collect()
+    }
+
+    fn figures(&self, dir: &Path) -> Result<(), CliError> {
+        figures(self, dir)
+    }
+
+    fn print(&self, dir: &Path, out: &mut dyn Write) -> std::io::Result<()> {
+        print_stability(self, dir, out)
+    }
 }

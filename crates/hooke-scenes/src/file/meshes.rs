@@ -104,7 +104,7 @@ pub(crate) fn tet_mesh(
     t: TetMeshTable,
     at: &At,
 ) -> Result<Built, SceneFileError> {
-    let mesh_key = key(&at.key, "mesh");
+    let mesh_at = mesh_at(at, &t.mesh);
     let name = t.mesh.get_ref();
     let base = [".node", ".ele"]
         .iter()
@@ -112,7 +112,7 @@ pub(crate) fn tet_mesh(
         .unwrap_or(name);
     let mut mesh = meshes
         .tets(base)
-        .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?;
+        .map_err(|e| src.scene(e, mesh_at.span.clone(), &mesh_at.key))?;
     placed(
         src,
         &mut mesh.vertices,
@@ -124,14 +124,10 @@ pub(crate) fn tet_mesh(
     if let Some(s) = family(src, t.edges.as_ref(), &at.key, "edges")? {
         solid = solid.edges(s);
     }
-    let built_at = At {
-        key: mesh_key,
-        span: t.mesh.span(),
-    };
     finish(
         src,
         at,
-        &built_at,
+        &mesh_at,
         solid,
         shared!(t),
         ("kg/m³", PinNames::None),
@@ -165,10 +161,10 @@ pub(crate) fn obj_shell(
     t: ObjTable,
     at: &At,
 ) -> Result<Built, SceneFileError> {
-    let mesh_key = key(&at.key, "mesh");
+    let mesh_at = mesh_at(at, &t.mesh);
     let mut mesh = meshes
         .surface(t.mesh.get_ref())
-        .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?;
+        .map_err(|e| src.scene(e, mesh_at.span.clone(), &mesh_at.key))?;
     placed(
         src,
         &mut mesh.vertices,
@@ -183,14 +179,10 @@ pub(crate) fn obj_shell(
     if let Some(s) = family(src, t.bend.as_ref(), &at.key, "bend")? {
         shell = shell.bend(s);
     }
-    let built_at = At {
-        key: mesh_key,
-        span: t.mesh.span(),
-    };
     finish(
         src,
         at,
-        &built_at,
+        &mesh_at,
         shell,
         shared!(t),
         ("kg/m²", PinNames::None),
@@ -226,11 +218,11 @@ pub(crate) fn layered(
     t: LayeredTable,
     at: &At,
 ) -> Result<Built, SceneFileError> {
-    let mesh_key = key(&at.key, "mesh");
+    let mesh_at = mesh_at(at, &t.mesh);
     let thickness = positive(src, &t.thickness, &key(&at.key, "thickness"), "m")?;
     let mut mesh = meshes
         .surface(t.mesh.get_ref())
-        .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?;
+        .map_err(|e| src.scene(e, mesh_at.span.clone(), &mesh_at.key))?;
     placed(
         src,
         &mut mesh.vertices,
@@ -248,16 +240,21 @@ pub(crate) fn layered(
     if let Some(s) = family(src, t.cross.as_ref(), &at.key, "cross")? {
         body = body.cross(s);
     }
-    let built_at = At {
-        key: mesh_key,
-        span: t.mesh.span(),
-    };
     finish(
         src,
         at,
-        &built_at,
+        &mesh_at,
         body,
         shared!(t),
         ("kg/m³", PinNames::None),
     )
+}
+
+/// Where the `mesh` key of the body table at `at` is: what a body built
+/// from a mesh file points at when it cannot be built.
+fn mesh_at(at: &At, mesh: &Spanned<String>) -> At {
+    At {
+        key: key(&at.key, "mesh"),
+        span: mesh.span(),
+    }
 }
