@@ -35,8 +35,10 @@
 //! hooke accuracy  [SCENE.toml] [--builtin NAME] [--methods A,B] [--dt VALUES]
 //!                 [--tolerances VALUES] [--duration S] [--frames N] [--repeat N]
 //!                 [--reference-dt S] [--out DIR] [--quiet]
+//! hooke merge DIR... [--out DIR]   # combine the partial reports of --shard runs
 //! ```
 //!
+//! Both lab commands also take `--shard I/N` (see below).
 //! `VALUES` is a comma-separated list of numbers and log-spaced ranges
 //! `FIRST:LAST:COUNT`. Both lab commands also take `--scale-stiffness S`
 //! (every spring's stiffness times `S` first), `--solver cholesky|pcg` and
@@ -45,8 +47,10 @@
 //!
 //! | command | files |
 //! | --- | --- |
-//! | `hooke stability` | `stability.json` (the `StabilityReport`: every cell, and with `--limit` each integrator's largest stable step), `stability.png` (one stable/unstable map per integrator over stiffness × step, with the line `h·ω_max = 2`) |
-//! | `hooke accuracy` | `accuracy.json` (the `AccuracyReport`: the reference, every run's error, wall time and work, each integrator's observed order), `work_precision.png` (error against wall time), `convergence.png` (error against step) |
+//! | `hooke stability` | `stability.json` (the `StabilityReport`: every cell, and with `--limit` each integrator's largest stable step), `stability.csv` (the cells), `stability.png` and `stability.svg` (one stable/unstable map per integrator over stiffness × step, with the line `h·ω_max = 2`) |
+//! | `hooke accuracy` | `accuracy.json` (the `AccuracyReport`: the reference, every run's error, wall time and work, each integrator's observed order), `accuracy.csv` (the runs), `work_precision.png`/`.svg` (error against wall time), `convergence.png`/`.svg` (error against step) |
+//! | `… --shard I/N` | `stability.shard-I-of-N.json` or `accuracy.shard-I-of-N.json`, with its CSV: part `I` of `N` of the sweep, the jobs numbered `k ≡ I (mod N)` |
+//! | `hooke merge DIR…` | from the partial reports found in the directories, the files of the unsharded command |
 //!
 //! # Errors
 //!
