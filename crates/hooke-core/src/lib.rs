@@ -12,7 +12,8 @@
 //! - kinematic [`Obstacle`]s (plane, sphere, box, capsule, optionally moving
 //!   along a [`Path`]) that particles cannot enter, with restitution and
 //!   Coulomb friction. Every integrator ends its step with
-//!   [`System::end_step`], which places the scripted pins and resolves
+//!   [`System::end_step`] (the explicit ones through
+//!   [`StepBuffers::finish`]), which places the scripted pins and resolves
 //!   contacts (push out along the normal, then the normal and friction
 //!   impulses: [`respond_to_contact`]); the implicit integrators also hold
 //!   contacts as constraints inside their solve. A system with neither runs
@@ -26,8 +27,14 @@
 //! - [`ForceEvaluator`] computes `a = M⁻¹ f(x, v)`, in parallel on large
 //!   systems when the `parallel` feature is on.
 //! - [`Integrator`] is the trait every time integrator implements;
-//!   [`Simulation`] drives one and calls [`Observer`]s such as [`EnergyLog`]
-//!   and [`StrainLog`].
+//!   [`StepBuffers`] holds what every step does around its formula (check
+//!   the arguments, take the history, size the buffers; commit, record the
+//!   history, end the step).
+//! - [`Simulation`] is the one loop that steps an integrator, for programs,
+//!   the lab and the command line alike: it times every step and shows its
+//!   [`StepReport`] and wall time ([`StepInfo`]) to [`Observer`]s such as
+//!   [`EnergyLog`] and [`StrainLog`], any of which can stop the run
+//!   (`ControlFlow::Break`); it returns the [`Run`].
 //! - [`System::energy`] and [`System::dissipation_power`] support
 //!   energy-balance checks.
 //! - [`reference`](mod@reference) holds problems with known answers.

@@ -24,7 +24,9 @@
 //!
 //! Every integrator owns its buffers (a steady-state step allocates nothing),
 //! validates `dt` and the state, and leaves the state untouched when a step
-//! fails. Those that carry history between steps (leapfrog, the Verlets,
+//! fails: each brackets its formula with `hooke_core::StepBuffers`'s
+//! `begin` and `finish`. [`ExplicitMethod`] names the fixed-step ones, by
+//! their `NAME` constants, and builds them. Those that carry history between steps (leapfrog, the Verlets,
 //! Beeman, Gear, and Dormand–Prince's first-same-as-last stage) start
 //! themselves from a single state and restart whenever they are handed a state
 //! they did not produce.
