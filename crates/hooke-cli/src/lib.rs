@@ -14,11 +14,13 @@
 //!
 //! The pictures and files themselves are drawn and written by `hooke-viz`.
 //! This crate holds the `hooke` binary, so the library facade `hooke`
-//! does not depend on the command line: building `hooke` alone compiles
-//! 125 crates, without clap, indicatif, tiny-skia and gif (`cargo tree -p
-//! hooke -e normal`, against 151 when the facade held the binary).
+//! does not depend on the command line: `hooke` alone depends on 109
+//! crates, without clap, indicatif, tiny-skia, gif and font8x8 (`cargo
+//! tree -p hooke -e normal`), against 151 when the facade held the binary.
 //! `default-members` in the workspace manifest makes `cargo run` from the
-//! root run this binary.
+//! root run this binary; a `cli` feature of the facade was the alternative,
+//! but it would have kept the binary, and with it the command line's
+//! dependencies, in the package that library users depend on.
 //!
 //! # The command
 //!
