@@ -7,6 +7,11 @@
 //! the integrators of `hooke-explicit` and `hooke-implicit`
 //! ([`Method::ALL`]) through [`Simulation`](hooke_core::Simulation), which
 //! times the steps alone; a stability run watches its [`EnergyBudget`].
+//!
+//! A sweep runs on many machines in parts: with a [`Shard`] in its options
+//! each part runs its share of the jobs, dealt by their number, and
+//! [`StabilityReport::merge`] or [`AccuracyReport::merge`] combines the
+//! parts' reports into the unsharded one ([`mod@merge`]).
 
 pub mod accuracy;
 mod budget;
