@@ -18,7 +18,7 @@ fn main() -> Result<(), Error> {
     let mut strain = StrainLog::default();
 
     let start = Instant::now();
-    let report = Simulation::new(&system, &mut VelocityVerlet::new())
+    let run = Simulation::new(&system, &mut VelocityVerlet::new())
         .observe(500, &mut energy)
         .observe(500, &mut strain)
         .run(&mut state, dt, steps)?;
@@ -38,7 +38,7 @@ fn main() -> Result<(), Error> {
     );
     println!(
         "integrator    velocity Verlet, dt = {dt} s, {steps} steps, {} force evaluations",
-        report.force_evaluations
+        run.report.force_evaluations
     );
     println!(
         "simulated     {:.2} s in {wall:.3} s wall ({:.1} µs per step)",

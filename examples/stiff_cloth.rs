@@ -25,7 +25,7 @@ fn main() -> Result<(), Error> {
     let mut energy = EnergyLog::default();
     let mut strain = StrainLog::default();
     let start = Instant::now();
-    let report = Simulation::new(&system, &mut integrator)
+    let run = Simulation::new(&system, &mut integrator)
         .observe(30, &mut energy)
         .observe(1, &mut strain)
         .run(&mut state, dt, steps)?;
@@ -43,7 +43,7 @@ fn main() -> Result<(), Error> {
     );
     println!(
         "backward Euler, Newton ≤ 5, sparse Cholesky: dt = 1/30 s, {steps} steps, {} linear solves",
-        report.linear_solves
+        run.report.linear_solves
     );
     println!(
         "explicit methods need dt < {explicit_limit:.1e} s, {:.0}× smaller",

@@ -3,8 +3,11 @@
 //! integrator is.
 //!
 //! This crate is the facade: it re-exports the model ([`core`]), the explicit
-//! integrators ([`explicit`]) and the implicit ones ([`implicit`]), and offers
-//! a [`prelude`] and one [`Error`] for all of them.
+//! integrators ([`explicit`]) and the implicit ones ([`implicit`]), the scene
+//! builders and files ([`scenes`]) and the lab's measurements ([`lab`]), and
+//! offers a [`prelude`] and one [`Error`] for all of them. It does not
+//! depend on the command line: the `hooke` binary lives in the `hooke-cli`
+//! package, which `cargo run` from the workspace root builds and runs.
 //!
 //! ```
 //! use hooke::prelude::*;
@@ -32,10 +35,16 @@
 pub use hooke_core as core;
 pub use hooke_explicit as explicit;
 pub use hooke_implicit as implicit;
+pub use hooke_lab as lab;
 pub use hooke_scenes as scenes;
 
+/// The README's example, compiled (not run: it takes seconds) as a doc test.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
+
 /// Any error hooke returns.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// The system description is invalid.
     #[error(transparent)]
@@ -46,6 +55,16 @@ pub enum Error {
     /// An integrator or solver parameter is out of range.
     #[error(transparent)]
     Parameter(#[from] hooke_core::ParameterError),
+    /// A scene builder was given a description it cannot build.
+    #[error(transparent)]
+    Scene(#[from] hooke_scenes::SceneError),
+    /// A scene file cannot be read or is invalid (the error names its file,
+    /// line and key).
+    #[error(transparent)]
+    SceneFile(#[from] hooke_scenes::file::SceneFileError),
+    /// A lab measurement cannot be made.
+    #[error(transparent)]
+    Lab(#[from] hooke_lab::LabError),
 }
 
 /// The types most programs need.
@@ -53,12 +72,17 @@ pub mod prelude {
     pub use crate::Error;
     pub use hooke_core::reference::{BeadOnString, HangingChain, Oscillator, Sheet};
     pub use hooke_core::{
-        BuildError, EnergyLog, Integrator, Observer, Obstacle, Path, Shape, Simulation, State,
-        StepError, StepReport, StrainLog, System, SystemBuilder, Vec3,
+        BuildError, EnergyLog, Integrator, ObserveFn, Observer, Obstacle, Path, Run, Shape,
+        Simulation, State, StepError, StepInfo, StepReport, StrainLog, System, SystemBuilder, Vec3,
     };
     pub use hooke_explicit::{
         Beeman, DormandPrince, ExplicitEuler, Gear, Heun, Leapfrog, Midpoint, PositionVerlet, Rk4,
         SymplecticEuler, VelocityVerlet,
     };
     pub use hooke_implicit::{Implicit, LinearSolver, PcgSettings, Scheme};
+    pub use hooke_lab::{AccuracyOptions, StabilityOptions, accuracy, stability};
+    pub use hooke_scenes::{
+        Cloth, IntegratorSpec, Lattice, Layered, Method, Rope, Scene, Shell, Solid, TetMesh,
+        TriangleMesh, builtin,
+    };
 }

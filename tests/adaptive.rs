@@ -132,7 +132,7 @@ fn rejects_invalid_tolerances() {
     ] {
         let error: ParameterError = DormandPrince::new(rtol, atol).unwrap_err();
         assert_eq!(error.parameter, parameter);
-        assert_eq!(error.integrator, "dopri5");
+        assert_eq!(error.integrator, DormandPrince::NAME);
     }
 }
 

@@ -256,7 +256,7 @@ fn an_overflowing_step_names_time_and_particle_and_keeps_the_state() {
                 assert!(time > 0.0 && time <= 1.5, "{name}: time {time}");
             }
             StepError::StepSizeUnderflow { .. } | StepError::TooManySubsteps { .. } => {
-                assert_eq!(name, "dopri5", "{name}: {error}");
+                assert_eq!(name, DormandPrince::NAME, "{name}: {error}");
             }
             other => panic!("{name}: unexpected {other}"),
         }

@@ -3,16 +3,20 @@
 
 use std::ffi::OsString;
 use std::io::Write;
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
+use hooke_core::{ObserveFn, State, StepInfo, System};
 use hooke_scenes::{Scene, builtin, file};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::cli_error::CliError;
 use crate::describe::{describe, step_text};
-use crate::lab::{AccuracyArgs, StabilityArgs, accuracy_command, stability_command};
+use crate::lab::{
+    AccuracyArgs, MergeArgs, StabilityArgs, accuracy_command, merge_command, stability_command,
+};
 use crate::runner::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, run};
 use crate::summary::Summary;
 
@@ -52,6 +56,9 @@ enum Command {
     /// order and its run time; write accuracy.json, work_precision.png and
     /// convergence.png.
     Accuracy(Box<AccuracyArgs>),
+    /// Combine the partial reports of `stability --shard` or `accuracy
+    /// --shard` runs into the reports and figures of the whole sweep.
+    Merge(MergeArgs),
 }
 
 #[derive(Debug, Args)]
@@ -123,11 +130,12 @@ where
         Some(Command::Check { scene }) => check(&scene, out),
         Some(Command::Stability(args)) => stability_command(&args, out),
         Some(Command::Accuracy(args)) => accuracy_command(&args, out),
+        Some(Command::Merge(args)) => merge_command(&args, out),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
-            let _ = writeln!(err, "error: {message}");
+        Err(error) => {
+            let _ = writeln!(err, "error: {error}");
             ExitCode::FAILURE
         }
     }
@@ -135,8 +143,8 @@ where
 
 /// `hooke run`: an error message when the command failed, including a run
 /// that stopped early.
-fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), String> {
-    let scene = run_scene(args).map_err(|e| e.to_string())?;
+fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let scene = run_scene(args)?;
     let steps = scene.timing.steps();
     writeln!(
         out,
@@ -145,8 +153,7 @@ fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), String> {
         scene.system.particle_count(),
         scene.system.springs().len(),
         step_text(scene.timing.dt)
-    )
-    .map_err(|e| CliError::from(e).to_string())?;
+    )?;
     let bar = if args.quiet {
         ProgressBar::hidden()
     } else {
@@ -158,15 +165,20 @@ fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), String> {
         bar.set_style(style.progress_chars("=> "));
     }
     let options = RunOptions::new(&args.out).gif(!args.no_gif);
-    let summary = run(&scene, &options, |done, _| bar.set_position(done as u64));
+    let mut progress = ObserveFn(|_: &System, _: &State, step: &StepInfo| {
+        bar.set_position(step.index as u64);
+        ControlFlow::Continue(())
+    });
+    let summary = run(&scene, &options, &mut progress);
     bar.finish_and_clear();
-    let summary = summary.map_err(|e| e.to_string())?;
-    report(&summary, !args.no_gif, out).map_err(|e| CliError::from(e).to_string())?;
+    let summary = summary?;
+    report(&summary, !args.no_gif, out)?;
     match summary.error {
-        Some(error) => Err(format!(
-            "the run stopped after {} of {} steps: {error}",
-            summary.steps, summary.steps_planned
-        )),
+        Some(reason) => Err(CliError::RunStopped {
+            steps: summary.steps,
+            planned: summary.steps_planned,
+            reason,
+        }),
         None => Ok(()),
     }
 }
@@ -222,7 +234,7 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
 }
 
 /// `hooke scenes`.
-fn list_scenes(out: &mut dyn Write) -> Result<(), String> {
+fn list_scenes(out: &mut dyn Write) -> Result<(), CliError> {
     let width = builtin::NAMES.iter().map(|(name, _)| name.len()).max();
     let listing = builtin::NAMES.iter().try_for_each(|(name, description)| {
         writeln!(
@@ -231,16 +243,12 @@ fn list_scenes(out: &mut dyn Write) -> Result<(), String> {
             width = width.unwrap_or(0)
         )
     });
-    listing.map_err(|e| CliError::from(e).to_string())
+    Ok(listing?)
 }
 
 /// `hooke check`.
-fn check(path: &Path, out: &mut dyn Write) -> Result<(), String> {
-    let text = file::load(path)
-        .map_err(CliError::from)
-        .and_then(|scene| describe(&scene))
-        .map_err(|e| e.to_string())?;
-    write!(out, "{text}")
-        .and_then(|()| writeln!(out, "{}: ok", path.display()))
-        .map_err(|e| CliError::from(e).to_string())
+fn check(path: &Path, out: &mut dyn Write) -> Result<(), CliError> {
+    let text = describe(&file::load(path)?)?;
+    write!(out, "{text}")?;
+    Ok(writeln!(out, "{}: ok", path.display())?)
 }

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
-use crate::error::OutputError;
+use hooke_viz::OutputError;
 
 /// A failure of a `hooke` command that leaves no usable result: invalid
 /// input, or a file or directory that cannot be written. A run whose
@@ -36,7 +36,7 @@ pub enum CliError {
         /// What the operating system said.
         source: std::io::Error,
     },
-    /// `summary.json` could not be written.
+    /// `summary.json`, a report or its CSV table could not be written.
     #[error("cannot write {}: {source}", path.display())]
     WriteSummary {
         /// The file.
@@ -46,7 +46,60 @@ pub enum CliError {
     },
     /// A figure could not be drawn or written.
     #[error(transparent)]
-    Plot(Box<hooke_lab::plot::PlotError>),
+    Plot(Box<hooke_viz::PlotError>),
+    /// A lab measurement that cannot be made.
+    #[error(transparent)]
+    Lab(#[from] hooke_lab::LabError),
+    /// `--scale-stiffness` gives a stiffness the scene's springs cannot
+    /// take.
+    #[error("--scale-stiffness {scale}: {source}")]
+    ScaleStiffness {
+        /// The scale given.
+        scale: f64,
+        /// Why the scaled system is invalid.
+        source: hooke_core::BuildError,
+    },
+    /// `--methods` names no integrator.
+    #[error(
+        "--methods: no integrator \"{name}\"; one of {}",
+        hooke_scenes::Method::names()
+    )]
+    UnknownMethod {
+        /// The name given.
+        name: String,
+    },
+    /// A run stopped before its last step (its files were written).
+    #[error("the run stopped after {steps} of {planned} steps: {reason}")]
+    RunStopped {
+        /// Steps taken.
+        steps: usize,
+        /// Steps planned.
+        planned: usize,
+        /// Why it stopped.
+        reason: String,
+    },
+    /// A file or directory could not be read.
+    #[error("cannot read {}: {source}", path.display())]
+    Read {
+        /// The path.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// A partial report is not valid JSON of its kind.
+    #[error("{}: not a partial report: {source}", path.display())]
+    ParseReport {
+        /// The file.
+        path: PathBuf,
+        /// What the parser said.
+        source: serde_json::Error,
+    },
+    /// `hooke merge` found no partial report.
+    #[error("no stability.shard-*.json or accuracy.shard-*.json in {}", dirs.iter().map(|d| d.display().to_string()).collect::<Vec<_>>().join(", "))]
+    NoPartials {
+        /// The directories searched.
+        dirs: Vec<PathBuf>,
+    },
     /// The command's own output could not be printed.
     #[error("cannot print: {0}")]
     Print(#[from] std::io::Error),

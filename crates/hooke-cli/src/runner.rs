@@ -1,22 +1,18 @@
-//! [`run`]: a scene stepped from start to end, with its frames, pictures
-//! and [`Summary`] written into an output directory as it goes.
+//! [`run`]: a scene stepped from start to end by a [`Simulation`] whose
+//! observers write its frames, pictures and [`Summary`] into an output
+//! directory as it goes.
 
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use hooke_core::{State, StepError, StepReport, System, Vec3};
+use hooke_core::{EnergyLog, Observer, Simulation, State, StepError, StrainLog, System, Vec3};
 use hooke_scenes::{IntegratorSpec, Scene, Timing};
+use hooke_viz::{Bounds, run_bounds, scene_mesh};
 
-use crate::animation::{AnimationWriter, MAX_GIF_FRAMES};
-use crate::bounds::Bounds;
-use crate::camera::{Camera, View};
 use crate::cli_error::CliError;
-use crate::framing::run_bounds;
-use crate::mesh::Mesh;
-use crate::ply::write_frame;
-use crate::render::{Renderer, save_png};
-use crate::scene_mesh::{obstacles_at, scene_mesh};
+use crate::frames::FrameWriter;
+use crate::step_record::StepRecord;
 use crate::summary::{Summary, median};
 
 /// The file name of the run summary in the output directory.
@@ -77,14 +73,15 @@ impl RunOptions {
 ///   are removed first);
 /// - [`ANIMATION_FILE`]: the frames rendered with a camera fixed before the
 ///   run from [`run_bounds`], subsampled to at most
-///   [`MAX_GIF_FRAMES`](crate::MAX_GIF_FRAMES) pictures that play in about
+///   [`MAX_GIF_FRAMES`](hooke_viz::MAX_GIF_FRAMES) pictures that play in about
 ///   real time;
 /// - [`PREVIEW_FILE`]: the last state, rendered larger;
 /// - [`SUMMARY_FILE`]: the [`Summary`], which is also returned.
 ///
-/// Each step is timed on its own with [`Instant`]; energy and strain are
-/// sampled at the written frames. `progress(done, total)` is called after
-/// every step.
+/// The run is a [`Simulation`] with observers: the frame writer, a record
+/// of every step's wall time and contacts, an [`EnergyLog`] and a
+/// [`StrainLog`] sampled at the written frames, and `progress`, the
+/// caller's (a progress bar), called after every step.
 ///
 /// A step that fails (a non-finite state, a solver failure) or leaves a
 /// position beyond what a frame file holds (`|x| > f32::MAX`: the run has
@@ -102,7 +99,7 @@ impl RunOptions {
 pub fn run(
     scene: &Scene,
     options: &RunOptions,
-    mut progress: impl FnMut(usize, usize),
+    progress: &mut dyn Observer,
 ) -> Result<Summary, CliError> {
     let started = Instant::now();
     check_timing(&scene.timing)?;
@@ -116,94 +113,38 @@ pub fn run(
     let every = timing.steps_per_frame();
     let bounds = run_bounds(system, timing.duration)
         .unwrap_or_else(|| Bounds::new(Vec3::zeros(), Vec3::zeros()));
-    let animation = if options.gif {
-        Some(Animation::new(
-            &options.out,
-            &bounds,
-            options.gif_size,
-            timing.frame_rate,
-            steps / every + 1,
-        )?)
-    } else {
-        None
-    };
+    let gif = options
+        .gif
+        .then_some((options.gif_size, timing.frame_rate, steps / every + 1));
+    let mut frames = FrameWriter::new(&options.out, mesh, bounds, options.preview_size, gif)?;
+    let mut record = StepRecord::default();
+    let (mut energy, mut strain) = (EnergyLog::default(), StrainLog::default());
     let mut state = system.initial_state();
-    let mut output = Output {
-        system,
-        dir: &options.out,
-        mesh,
-        animation,
-        frames: 0,
-        last_positions: Vec::new(),
-        last_time: 0.0,
-        energy_max: f64::NEG_INFINITY,
-        max_strain: 0.0,
-    };
-    let energy_initial = energy(system, &state);
-    output.frame(&state)?;
+    let run = Simulation::new(system, &mut integrator)
+        .observe(1, &mut record)
+        .observe(every, &mut frames)
+        .observe(every, &mut energy)
+        .observe(every, &mut strain)
+        .observe(1, progress)
+        .run_to_end(&mut state, timing.dt, steps);
+    let frame_count = frames.into_result()?;
 
-    let mut step_ms = Vec::new();
-    let mut total = StepReport::default();
-    let mut contacts_max = 0;
-    let mut failure = None;
-    for step in 1..=steps {
-        let start = Instant::now();
-        match integrator.step(system, &mut state, timing.dt) {
-            Ok(report) => {
-                step_ms.push(start.elapsed().as_secs_f64() * 1e3);
-                contacts_max = contacts_max.max(report.contacts);
-                total += report;
-            }
-            Err(error) => {
-                let non_finite = matches!(
-                    error,
-                    StepError::NonFinite { .. } | StepError::NonFiniteSystem { .. }
-                );
-                failure = Some((error.to_string(), non_finite));
-                break;
-            }
-        }
-        if let Some(particle) = beyond_frame_range(&state) {
-            failure = Some((
-                format!(
-                    "diverged: particle {particle} is beyond the range of the frame files \
-                     (|x| > {:.1e} m) at t = {}",
-                    f32::MAX,
-                    state.time()
-                ),
-                true,
-            ));
-            break;
-        }
-        if step % every == 0 {
-            output.frame(&state)?;
-        }
-        progress(step, steps);
-    }
-    let taken = step_ms.len();
-    let last_good = beyond_frame_range(&state).is_none();
-    if last_good && taken % every != 0 {
-        output.frame(&state)?;
-    }
-    let (shown, time) = if last_good {
-        (state.positions(), state.time())
-    } else {
-        (&output.last_positions[..], output.last_time)
+    let failure = match (run.failure(), record.diverged) {
+        (Some(error), _) => Some((
+            error.to_string(),
+            matches!(
+                error,
+                StepError::NonFinite { .. } | StepError::NonFiniteSystem { .. }
+            ),
+        )),
+        (None, Some(diverged)) => Some((diverged, true)),
+        (None, None) => None,
     };
-    let camera = Camera::new(
-        &bounds,
-        options.preview_size.0,
-        options.preview_size.1,
-        &View::default(),
-    )?;
-    let picture = Renderer::new(camera).render(&output.mesh, shown, &obstacles_at(system, time))?;
-    save_png(&picture, &options.out.join(PREVIEW_FILE))?;
-    if let Some(animation) = output.animation.take() {
-        animation.writer.finish()?;
-    }
-
+    let taken = run.steps;
+    let total = run.report;
     let implicit = matches!(scene.integrator, IntegratorSpec::Implicit { .. });
     let per_step = |count: usize| implicit.then(|| mean(count, taken));
+    let energies = energy.samples();
     let summary = Summary {
         scene: scene.name.clone(),
         integrator: integrator.name().to_owned(),
@@ -211,21 +152,24 @@ pub fn run(
         steps: taken,
         steps_planned: steps,
         time: state.time(),
-        frames: output.frames,
+        frames: frame_count,
         particles: system.particle_count(),
         springs: system.springs().len(),
         wall_s: started.elapsed().as_secs_f64(),
-        step_ms_median: median(&step_ms),
-        step_ms_max: step_ms.iter().copied().fold(0.0, f64::max),
+        step_ms_median: median(&record.step_ms),
+        step_ms_max: record.step_ms.iter().copied().fold(0.0, f64::max),
         linear_iterations_mean: per_step(total.linear_iterations),
         newton_iterations_mean: per_step(total.newton_iterations),
         linear_solves: total.linear_solves,
         unconverged_solves: total.unconverged_solves,
-        contacts_max,
-        energy_initial,
-        energy_final: energy(system, &state),
-        energy_max: output.energy_max,
-        max_strain: output.max_strain,
+        contacts_max: record.contacts_max,
+        energy_initial: energies.first().map_or(f64::NAN, |s| s.energy.total()),
+        energy_final: energy_of(system, &state),
+        energy_max: energies
+            .iter()
+            .map(|s| s.energy.total())
+            .fold(f64::NEG_INFINITY, f64::max),
+        max_strain: strain.max(),
         finite: !failure.as_ref().is_some_and(|(_, non_finite)| *non_finite),
         error: failure.map(|(message, _)| message),
         out: options.out.clone(),
@@ -283,18 +227,8 @@ pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(
 }
 
 /// Total mechanical energy of `state`, J.
-fn energy(system: &System, state: &State) -> f64 {
+fn energy_of(system: &System, state: &State) -> f64 {
     system.energy(state).map_or(f64::NAN, |e| e.total())
-}
-
-/// The first particle whose position a frame file cannot hold: not finite,
-/// or beyond the largest single-precision number.
-fn beyond_frame_range(state: &State) -> Option<usize> {
-    let limit = f64::from(f32::MAX);
-    state
-        .positions()
-        .iter()
-        .position(|p| !p.iter().all(|c| c.abs() <= limit))
 }
 
 fn mean(count: usize, steps: usize) -> f64 {
@@ -302,82 +236,5 @@ fn mean(count: usize, steps: usize) -> f64 {
         0.0
     } else {
         count as f64 / steps as f64
-    }
-}
-
-/// The animation being written and the renderer of its pictures.
-struct Animation {
-    writer: AnimationWriter,
-    renderer: Renderer,
-    /// Every how many written frames one is pictured.
-    stride: usize,
-}
-
-impl Animation {
-    /// An animation of about `frames` frames at `frame_rate` per simulated
-    /// second, subsampled here (rather than in the writer) so that frames
-    /// left out are not rendered at all.
-    fn new(
-        dir: &Path,
-        bounds: &Bounds,
-        (width, height): (u32, u32),
-        frame_rate: f64,
-        frames: usize,
-    ) -> Result<Self, CliError> {
-        let stride = frames.div_ceil(MAX_GIF_FRAMES).max(1);
-        let camera = Camera::new(bounds, width, height, &View::default())?;
-        let writer = AnimationWriter::new(
-            &dir.join(ANIMATION_FILE),
-            width,
-            height,
-            frame_rate / stride as f64,
-            frames.div_ceil(stride),
-        )?;
-        Ok(Self {
-            writer,
-            renderer: Renderer::new(camera),
-            stride,
-        })
-    }
-}
-
-/// The files written while a run goes, and what is sampled at each frame.
-struct Output<'a> {
-    system: &'a System,
-    dir: &'a Path,
-    mesh: Mesh,
-    animation: Option<Animation>,
-    frames: usize,
-    /// Positions and time of the last written frame.
-    last_positions: Vec<Vec3>,
-    last_time: f64,
-    energy_max: f64,
-    max_strain: f64,
-}
-
-impl Output<'_> {
-    /// Writes `state` as the next frame, pictures it for the animation if it
-    /// is due, and samples its energy and strain.
-    fn frame(&mut self, state: &State) -> Result<(), CliError> {
-        let positions = state.positions();
-        write_frame(self.dir, self.frames, &self.mesh, positions)?;
-        if let Some(animation) = &mut self.animation {
-            if self.frames % animation.stride == 0 {
-                let obstacles = obstacles_at(self.system, state.time());
-                let picture = animation
-                    .renderer
-                    .render(&self.mesh, positions, &obstacles)?;
-                animation.writer.push(&picture)?;
-            }
-        }
-        self.frames += 1;
-        self.last_positions.clear();
-        self.last_positions.extend_from_slice(positions);
-        self.last_time = state.time();
-        self.energy_max = self.energy_max.max(energy(self.system, state));
-        if let Ok(strain) = self.system.max_strain(state) {
-            self.max_strain = self.max_strain.max(strain);
-        }
-        Ok(())
     }
 }

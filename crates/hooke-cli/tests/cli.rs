@@ -137,7 +137,7 @@ fn run_writes_frames_and_summary_of_a_scene_file() {
     assert!(summary.finite && summary.error.is_none());
     assert_eq!(summary.frames, 4);
     for frame in 0..summary.frames {
-        let path = out.join(hooke_cli::frame_file_name(frame));
+        let path = out.join(hooke_viz::frame_file_name(frame));
         let mut file = std::fs::File::open(&path).unwrap();
         let ply = Parser::<DefaultElement>::new().read_ply(&mut file).unwrap();
         assert_eq!(ply.payload["vertex"].len(), 36);

@@ -15,7 +15,7 @@ fn json(path: &Path) -> Value {
 }
 
 fn assert_png(path: &Path) {
-    let image = tiny_skia::Pixmap::load_png(path).unwrap();
+    let image = hooke_viz::Pixmap::load_png(path).unwrap();
     assert!(
         image.width() >= 600 && image.height() >= 400,
         "{}",
@@ -92,7 +92,7 @@ fn accuracy_writes_runs_orders_and_both_plots() {
         "--builtin",
         "damped-oscillator",
         "--methods",
-        "velocity-verlet,backward-euler,dopri5",
+        "velocity-verlet,backward-euler,dormand-prince",
         "--dt",
         "0.001:0.008:4",
         "--tolerances",

@@ -2,10 +2,11 @@
 //! writes, PLY frames read back by an independent parser, the summary's
 //! fields, and a run that blows up ending gracefully.
 
+use std::ops::ControlFlow;
 use std::path::Path;
 
 use hooke_cli::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, Summary, run};
-use hooke_core::{Obstacle, Shape, SystemBuilder, Vec3};
+use hooke_core::{ObserveFn, Obstacle, Shape, State, StepInfo, System, SystemBuilder, Vec3};
 use hooke_scenes::{
     Cloth, Corner, ExplicitMethod, IntegratorSpec, Rope, Scene, SceneBody, Springs, Timing,
 };
@@ -133,7 +134,7 @@ fn check_frames(dir: &Path, vertices: usize, faces: usize, edges: usize) -> usiz
         .collect();
     frames.sort();
     for (index, path) in frames.iter().enumerate() {
-        assert_eq!(path, &dir.join(hooke_cli::frame_file_name(index)));
+        assert_eq!(path, &dir.join(hooke_viz::frame_file_name(index)));
         let mut file = std::fs::File::open(path).unwrap();
         let ply = Parser::<DefaultElement>::new().read_ply(&mut file).unwrap();
         let positions = &ply.payload["vertex"];
@@ -172,17 +173,18 @@ fn cloth_on_sphere_writes_frames_pictures_and_summary() {
     let out = dir.path().join("out");
     let scene = cloth_on_sphere(0.2);
     let mut calls = Vec::new();
-    let summary = run(&scene, &RunOptions::new(&out), |done, total| {
-        calls.push((done, total));
-    })
-    .unwrap();
+    let mut progress = ObserveFn(|_: &System, _: &State, step: &StepInfo| {
+        calls.push(step.index);
+        ControlFlow::Continue(())
+    });
+    let summary = run(&scene, &RunOptions::new(&out), &mut progress).unwrap();
 
     // 12 steps of 1/60 s, a frame every 2 steps: frames 0..=6.
     assert_eq!(
         (summary.steps, summary.steps_planned, summary.frames),
         (12, 12, 7)
     );
-    assert_eq!(calls.last(), Some(&(12, 12)));
+    assert_eq!(calls.last(), Some(&12));
     assert_eq!(calls.len(), 12);
     assert_eq!(check_frames(&out, 64, 2 * 7 * 7, 0), 7);
     for file in [PREVIEW_FILE, ANIMATION_FILE] {
@@ -219,12 +221,7 @@ fn cloth_on_sphere_writes_frames_pictures_and_summary() {
 fn explicit_run_has_no_linear_iterations_and_draws_segments() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("rope");
-    let summary = run(
-        &swinging_rope(),
-        &RunOptions::new(&out).gif(false),
-        |_, _| {},
-    )
-    .unwrap();
+    let summary = run(&swinging_rope(), &RunOptions::new(&out).gif(false), &mut ()).unwrap();
     assert_eq!(summary.steps, 200);
     assert_eq!(summary.frames, 11);
     assert_eq!(check_frames(&out, 11, 0, 10), 11);
@@ -241,7 +238,7 @@ fn explicit_run_has_no_linear_iterations_and_draws_segments() {
 fn a_run_that_blows_up_ends_with_finite_false_and_an_error() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("boom");
-    let summary = run(&exploding_spring(), &RunOptions::new(&out), |_, _| {}).unwrap();
+    let summary = run(&exploding_spring(), &RunOptions::new(&out), &mut ()).unwrap();
     assert!(!summary.finite);
     let error = summary.error.as_deref().expect("an error");
     assert!(error.starts_with("diverged: particle"), "{error}");
@@ -263,8 +260,8 @@ fn a_second_run_replaces_the_frames_of_the_first() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("again");
     let options = RunOptions::new(&out).gif(false);
-    run(&cloth_on_sphere(0.2), &options, |_, _| {}).unwrap();
-    let summary = run(&cloth_on_sphere(0.1), &options, |_, _| {}).unwrap();
+    run(&cloth_on_sphere(0.2), &options, &mut ()).unwrap();
+    let summary = run(&cloth_on_sphere(0.1), &options, &mut ()).unwrap();
     assert_eq!(summary.frames, 4);
     assert_eq!(check_frames(&out, 64, 98, 0), 4);
 }
@@ -274,7 +271,7 @@ fn invalid_timing_is_an_error_not_a_panic() {
     let dir = tempfile::tempdir().unwrap();
     let mut scene = cloth_on_sphere(0.2);
     scene.timing.dt = 0.0;
-    let error = run(&scene, &RunOptions::new(dir.path()), |_, _| {}).unwrap_err();
+    let error = run(&scene, &RunOptions::new(dir.path()), &mut ()).unwrap_err();
     assert_eq!(error.to_string(), "timing: dt must be positive and finite");
 }
 

@@ -16,6 +16,17 @@
 //! microseconds, as much as evaluating a 32×32 cloth); from 10⁵ springs on it
 //! is 1.3–1.7× faster, limited by the extra buffer traffic.
 //! [`Parallelism::Auto`] switches at [`PARALLEL_MIN_SPRINGS`].
+//!
+//! The parallel path allocates nothing once its per-chunk buffers are
+//! sized, when it is called from a thread of rayon's pool: its jobs then go
+//! to that worker's own deque, whose buffer never grows at this fan-out. A
+//! call from a thread outside the pool hands its first job to rayon's
+//! global injector, a linked list of blocks that allocates a new block
+//! every 63 jobs. A program that needs allocation-free parallel steps
+//! makes the stepping thread a worker, e.g. with
+//! `rayon::ThreadPoolBuilder::new().use_current_thread().build_global()`
+//! before any parallel work (as `tests/no_allocation.rs` does), or steps
+//! inside `ThreadPool::install`.
 
 use crate::{System, Vec3};
 

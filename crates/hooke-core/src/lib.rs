@@ -12,7 +12,8 @@
 //! - kinematic [`Obstacle`]s (plane, sphere, box, capsule, optionally moving
 //!   along a [`Path`]) that particles cannot enter, with restitution and
 //!   Coulomb friction. Every integrator ends its step with
-//!   [`System::end_step`], which places the scripted pins and resolves
+//!   [`System::end_step`] (the explicit ones through
+//!   [`StepBuffers::finish`]), which places the scripted pins and resolves
 //!   contacts (push out along the normal, then the normal and friction
 //!   impulses: [`respond_to_contact`]); the implicit integrators also hold
 //!   contacts as constraints inside their solve. A system with neither runs
@@ -26,8 +27,14 @@
 //! - [`ForceEvaluator`] computes `a = M⁻¹ f(x, v)`, in parallel on large
 //!   systems when the `parallel` feature is on.
 //! - [`Integrator`] is the trait every time integrator implements;
-//!   [`Simulation`] drives one and calls [`Observer`]s such as [`EnergyLog`]
-//!   and [`StrainLog`].
+//!   [`StepBuffers`] holds what every step does around its formula (check
+//!   the arguments, take the history, size the buffers; commit, record the
+//!   history, end the step).
+//! - [`Simulation`] is the one loop that steps an integrator, for programs,
+//!   the lab and the command line alike: it times every step and shows its
+//!   [`StepReport`] and wall time ([`StepInfo`]) to [`Observer`]s such as
+//!   [`EnergyLog`] and [`StrainLog`], any of which can stop the run
+//!   (`ControlFlow::Break`); it returns the [`Run`].
 //! - [`System::energy`] and [`System::dissipation_power`] support
 //!   energy-balance checks.
 //! - [`reference`](mod@reference) holds problems with known answers.
@@ -52,11 +59,14 @@ mod energy;
 mod error;
 mod forces;
 mod integrator;
+mod logs;
 mod observer;
 mod obstacle;
 pub mod reference;
+mod simulation;
 mod spring;
 mod state;
+mod step;
 mod system;
 
 pub use builder::{SpringEntry, SystemBuilder};
@@ -65,10 +75,13 @@ pub use energy::Energy;
 pub use error::{BuildError, ParameterError, Quantity, SpringParameter, StepError};
 pub use forces::{ForceEvaluator, PARALLEL_MIN_SPRINGS, Parallelism};
 pub use integrator::{Integrator, StepReport, check_step};
-pub use observer::{EnergyLog, EnergySample, Observer, Simulation, StrainLog};
+pub use logs::{EnergyLog, EnergySample, StrainLog};
+pub use observer::{ObserveFn, Observer, StepInfo};
 pub use obstacle::{Obstacle, Path, Shape};
+pub use simulation::{End, Run, Simulation};
 pub use spring::{CompressedSprings, Linearized, Spring};
 pub use state::{History, State};
+pub use step::{Start, StepBuffers};
 pub use system::System;
 
 /// A 3-vector of `f64`: positions, velocities, forces.

@@ -1,21 +1,42 @@
-//! Observers watch a run instead of printing from inside it, and
-//! [`Simulation`] drives an integrator and calls them every `n` steps.
+//! [`Observer`]: watches a [`Simulation`](crate::Simulation) instead of
+//! printing from inside it, and may stop it.
 
-use crate::energy::Energy;
-use crate::error::StepError;
-use crate::{Integrator, State, StepReport, System};
+use std::ops::ControlFlow;
+use std::time::Duration;
 
-/// Watches a [`Simulation`]. Both hooks do nothing by default; implement the
-/// ones you need.
+use crate::{Run, State, StepReport, System};
+
+/// What an observer is shown of the steps since its previous call.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StepInfo {
+    /// Steps taken since the start of the run, this one included.
+    pub index: usize,
+    /// The reports of the steps since the previous call, summed.
+    pub report: StepReport,
+    /// Wall time spent inside [`Integrator::step`](crate::Integrator::step)
+    /// for those steps (what observers did between them is not counted).
+    pub wall: Duration,
+}
+
+/// Watches a [`Simulation`](crate::Simulation). Every hook does nothing by
+/// default; implement the ones you need.
+///
+/// [`Observer::observe`] returns whether the run goes on:
+/// [`ControlFlow::Break`] stops it after the current step (the other
+/// observers due at that step are still called).
 ///
 /// ```
-/// use hooke_core::{Observer, State, StepReport, System};
-/// /// Counts how often it is called.
-/// #[derive(Default)]
-/// struct Counter(usize);
-/// impl Observer for Counter {
-///     fn observe(&mut self, _: &System, _: &State, _: &StepReport) {
-///         self.0 += 1;
+/// use std::ops::ControlFlow;
+/// use hooke_core::{Observer, State, StepInfo, System};
+/// /// Stops the run once a particle falls below the floor.
+/// struct Floor(f64);
+/// impl Observer for Floor {
+///     fn observe(&mut self, _: &System, state: &State, _: &StepInfo) -> ControlFlow<()> {
+///         if state.positions().iter().any(|x| x.y < self.0) {
+///             ControlFlow::Break(())
+///         } else {
+///             ControlFlow::Continue(())
+///         }
 ///     }
 /// }
 /// ```
@@ -23,183 +44,68 @@ pub trait Observer {
     /// Called once with the initial state, before the first step.
     fn start(&mut self, _system: &System, _state: &State) {}
 
-    /// Called after every `n`-th step with the state after it and the report
-    /// of the steps since the previous call.
-    fn observe(&mut self, _system: &System, _state: &State, _report: &StepReport) {}
+    /// Called after every `n`-th step (see
+    /// [`Simulation::observe`](crate::Simulation::observe)) with the state
+    /// after it and what the steps since the previous call did.
+    fn observe(&mut self, _system: &System, _state: &State, _step: &StepInfo) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+
+    /// Called once when the run ends — completed, stopped by an observer or
+    /// failed — with the last state reached and how the run went.
+    fn finish(&mut self, _system: &System, _state: &State, _run: &Run) {}
 }
+
+/// The observer that watches nothing.
+impl Observer for () {}
 
 impl<O: Observer + ?Sized> Observer for &mut O {
     fn start(&mut self, system: &System, state: &State) {
         (**self).start(system, state);
     }
 
-    fn observe(&mut self, system: &System, state: &State, report: &StepReport) {
-        (**self).observe(system, state, report);
+    fn observe(&mut self, system: &System, state: &State, step: &StepInfo) -> ControlFlow<()> {
+        (**self).observe(system, state, step)
+    }
+
+    fn finish(&mut self, system: &System, state: &State, run: &Run) {
+        (**self).finish(system, state, run);
     }
 }
 
-/// Runs an integrator for a number of fixed steps, calling observers along
-/// the way.
+/// An observer made of a closure called at every observed step, for the
+/// cases where a type of its own would be ceremony.
 ///
 /// ```
-/// use hooke_core::{EnergyLog, Integrator, Simulation, State, StepError, StepReport, System};
+/// use std::ops::ControlFlow;
+/// use hooke_core::{ObserveFn, Simulation, State, StepInfo, System};
+/// # use hooke_core::{Integrator, StepError, StepReport};
 /// # use hooke_core::reference::Oscillator;
 /// # struct Still;
 /// # impl Integrator for Still {
 /// #     fn step(&mut self, _: &System, s: &mut State, dt: f64) -> Result<StepReport, StepError> {
 /// #         let t = s.time() + dt;
 /// #         s.set_time(t);
-/// #         Ok(StepReport { accepted_steps: 1, ..StepReport::default() })
+/// #         Ok(StepReport::fixed_step(0))
 /// #     }
 /// # }
-/// let system = Oscillator::undamped(1.0, 4.0).system()?;
+/// let system = Oscillator::undamped(1.0, 1.0).system()?;
 /// let mut state = system.initial_state();
-/// let mut energy = EnergyLog::default();
-/// let mut integrator = Still; // any Integrator, e.g. hooke_explicit::Rk4
-/// let report = Simulation::new(&system, &mut integrator)
-///     .observe(10, &mut energy)
-///     .run(&mut state, 0.01, 100)?;
-/// assert_eq!(report.accepted_steps, 100);
-/// assert_eq!(energy.samples().len(), 11); // the start and every 10th step
+/// let mut heights = Vec::new();
+/// let mut record = ObserveFn(|_: &System, state: &State, _: &StepInfo| {
+///     heights.push(state.positions()[Oscillator::BOB].y);
+///     ControlFlow::Continue(())
+/// });
+/// Simulation::new(&system, &mut Still) // any Integrator
+///     .observe(5, &mut record)
+///     .run(&mut state, 0.01, 20)?;
+/// assert_eq!(heights.len(), 4);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub struct Simulation<'a, I: ?Sized> {
-    system: &'a System,
-    integrator: &'a mut I,
-    observers: Vec<(usize, &'a mut dyn Observer)>,
-}
+pub struct ObserveFn<F>(pub F);
 
-impl<'a, I: Integrator + ?Sized> Simulation<'a, I> {
-    /// A simulation of `system` stepped by `integrator`, with no observers.
-    #[must_use]
-    pub fn new(system: &'a System, integrator: &'a mut I) -> Self {
-        Self {
-            system,
-            integrator,
-            observers: Vec::new(),
-        }
-    }
-
-    /// Adds an observer called after every `every`-th step (`0` is taken as
-    /// `1`).
-    #[must_use]
-    pub fn observe(mut self, every: usize, observer: &'a mut dyn Observer) -> Self {
-        self.observers.push((every.max(1), observer));
-        self
-    }
-
-    /// Takes `steps` steps of size `dt` from `state`, returning the sum of the
-    /// step reports.
-    ///
-    /// # Errors
-    /// The first [`StepError`]; `state` is then the state before the failed
-    /// step.
-    pub fn run(
-        &mut self,
-        state: &mut State,
-        dt: f64,
-        steps: usize,
-    ) -> Result<StepReport, StepError> {
-        crate::check_step(self.system, state, dt)?;
-        for (_, observer) in &mut self.observers {
-            observer.start(self.system, state);
-        }
-        let mut total = StepReport::default();
-        let mut since: Vec<StepReport> = vec![StepReport::default(); self.observers.len()];
-        for step in 1..=steps {
-            let report = self.integrator.step(self.system, state, dt)?;
-            total += report;
-            for ((every, observer), pending) in self.observers.iter_mut().zip(&mut since) {
-                *pending += report;
-                if step % *every == 0 {
-                    observer.observe(self.system, state, pending);
-                    *pending = StepReport::default();
-                }
-            }
-        }
-        Ok(total)
-    }
-}
-
-/// One sample of an [`EnergyLog`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EnergySample {
-    /// Simulated time.
-    pub time: f64,
-    /// The energy at that time.
-    pub energy: Energy,
-    /// The dissipated power at that time.
-    pub dissipation_power: f64,
-}
-
-/// Records energy and dissipated power at the start and at every observed
-/// step.
-#[derive(Debug, Clone, Default)]
-pub struct EnergyLog {
-    samples: Vec<EnergySample>,
-}
-
-impl EnergyLog {
-    /// The samples, in time order.
-    #[must_use]
-    pub fn samples(&self) -> &[EnergySample] {
-        &self.samples
-    }
-
-    fn record(&mut self, system: &System, state: &State) {
-        // Simulation checks the state against the system before any hook.
-        if let (Ok(energy), Ok(dissipation_power)) =
-            (system.energy(state), system.dissipation_power(state))
-        {
-            self.samples.push(EnergySample {
-                time: state.time(),
-                energy,
-                dissipation_power,
-            });
-        }
-    }
-}
-
-impl Observer for EnergyLog {
-    fn start(&mut self, system: &System, state: &State) {
-        self.record(system, state);
-    }
-
-    fn observe(&mut self, system: &System, state: &State, _report: &StepReport) {
-        self.record(system, state);
-    }
-}
-
-/// Records the largest spring strain `|l − L|/L` at the start and at every
-/// observed step.
-#[derive(Debug, Clone, Default)]
-pub struct StrainLog {
-    samples: Vec<(f64, f64)>,
-}
-
-impl StrainLog {
-    /// `(time, max strain)` pairs, in time order.
-    #[must_use]
-    pub fn samples(&self) -> &[(f64, f64)] {
-        &self.samples
-    }
-
-    /// The largest strain seen (0 before any sample).
-    #[must_use]
-    pub fn max(&self) -> f64 {
-        self.samples.iter().fold(0.0, |m, &(_, e)| m.max(e))
-    }
-}
-
-impl Observer for StrainLog {
-    fn start(&mut self, system: &System, state: &State) {
-        // Simulation checks the state against the system before any hook.
-        if let Ok(strain) = system.max_strain(state) {
-            self.samples.push((state.time(), strain));
-        }
-    }
-
-    fn observe(&mut self, system: &System, state: &State, _report: &StepReport) {
-        self.start(system, state);
+impl<F: FnMut(&System, &State, &StepInfo) -> ControlFlow<()>> Observer for ObserveFn<F> {
+    fn observe(&mut self, system: &System, state: &State, step: &StepInfo) -> ControlFlow<()> {
+        (self.0)(system, state, step)
     }
 }

@@ -42,6 +42,43 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// The same shape moved by `offset`, as a moving obstacle is at the time
+    /// its path is displaced by `offset`.
+    ///
+    /// ```
+    /// use hooke_core::{Shape, Vec3};
+    /// let ball = Shape::Sphere { center: Vec3::zeros(), radius: 1.0 };
+    /// let moved = ball.translated(Vec3::x());
+    /// assert_eq!(moved, Shape::Sphere { center: Vec3::x(), radius: 1.0 });
+    /// ```
+    #[must_use]
+    pub fn translated(&self, offset: Vec3) -> Self {
+        match *self {
+            Self::Plane { point, normal } => Self::Plane {
+                point: point + offset,
+                normal,
+            },
+            Self::Sphere { center, radius } => Self::Sphere {
+                center: center + offset,
+                radius,
+            },
+            Self::Box {
+                center,
+                half_extents,
+                rotation,
+            } => Self::Box {
+                center: center + offset,
+                half_extents,
+                rotation,
+            },
+            Self::Capsule { a, b, radius } => Self::Capsule {
+                a: a + offset,
+                b: b + offset,
+                radius,
+            },
+        }
+    }
+
     /// The signed distance `φ(x)` from the surface (negative inside) and the
     /// outward unit normal `n = ∇φ` there.
     ///

@@ -1,10 +1,10 @@
 //! Beeman's algorithm.
 
 use hooke_core::{
-    ForceEvaluator, History, Integrator, State, StepError, StepReport, System, Vec3, check_step,
+    ForceEvaluator, Integrator, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
-use crate::ops::{combine, fit};
+use crate::ops::combine;
 
 /// Beeman's algorithm in its predictor–corrector form for velocity-dependent
 /// forces:
@@ -31,16 +31,17 @@ use crate::ops::{combine, fit};
 #[derive(Debug, Clone, Default)]
 pub struct Beeman {
     forces: ForceEvaluator,
-    history: History,
+    out: StepBuffers,
     /// `aₙ₋₁`, `aₙ` and `aₙ₊₁`.
     a_prev: Vec<Vec3>,
     a: Vec<Vec3>,
     a_next: Vec<Vec3>,
-    x: Vec<Vec3>,
-    v: Vec<Vec3>,
 }
 
 impl Beeman {
+    /// The name scene files, reports and the command line use.
+    pub const NAME: &'static str = "beeman";
+
     /// A new integrator.
     #[must_use]
     pub fn new() -> Self {
@@ -55,56 +56,43 @@ impl Integrator for Beeman {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
-        check_step(system, state, dt)?;
-        let continues = self.history.take_same_step(system, state, dt);
-        fit(
-            state.len(),
-            [
-                &mut self.a_prev,
-                &mut self.a,
-                &mut self.a_next,
-                &mut self.x,
-                &mut self.v,
-            ],
-        );
+        let buffers = [&mut self.a_prev, &mut self.a, &mut self.a_next];
+        let start = self.out.begin(system, state, dt, buffers)?;
+        let out = &mut self.out;
         let (x0, v0) = (state.positions(), state.velocities());
         let h = dt;
         let mut evaluations = 1;
-        if !continues {
+        if !start.continues_same_step() {
             self.forces.accelerations(system, x0, v0, &mut self.a);
-            combine(&mut self.x, x0, &[(-h, v0), (0.5 * h * h, &self.a)]);
-            combine(&mut self.v, v0, &[(-h, &self.a)]);
+            combine(&mut out.x, x0, &[(-h, v0), (0.5 * h * h, &self.a)]);
+            combine(&mut out.v, v0, &[(-h, &self.a)]);
             self.forces
-                .accelerations(system, &self.x, &self.v, &mut self.a_prev);
+                .accelerations(system, &out.x, &out.v, &mut self.a_prev);
             evaluations += 2;
         }
         let (a, a_prev) = (&self.a, &self.a_prev);
         combine(
-            &mut self.x,
+            &mut out.x,
             x0,
             &[(h, v0), (4.0 * h * h / 6.0, a), (-h * h / 6.0, a_prev)],
         );
-        combine(&mut self.v, v0, &[(1.5 * h, a), (-0.5 * h, a_prev)]);
+        combine(&mut out.v, v0, &[(1.5 * h, a), (-0.5 * h, a_prev)]);
         self.forces
-            .accelerations(system, &self.x, &self.v, &mut self.a_next);
+            .accelerations(system, &out.x, &out.v, &mut self.a_next);
         let corrector = [
             (2.0 * h / 6.0, &*self.a_next),
             (5.0 * h / 6.0, a),
             (-h / 6.0, a_prev),
         ];
-        combine(&mut self.v, v0, &corrector);
-        state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
+        combine(&mut out.v, v0, &corrector);
+        let report = out.finish(system, state, dt, StepReport::fixed_step(evaluations))?;
         // aₙ₋₁ ← aₙ ← aₙ₊₁
         std::mem::swap(&mut self.a_prev, &mut self.a);
         std::mem::swap(&mut self.a, &mut self.a_next);
-        self.history.record(system, state, dt);
-        Ok(StepReport {
-            contacts: system.end_step(state),
-            ..StepReport::fixed_step(evaluations)
-        })
+        Ok(report)
     }
 
     fn name(&self) -> &'static str {
-        "beeman"
+        Self::NAME
     }
 }

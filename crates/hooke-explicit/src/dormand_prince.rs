@@ -1,11 +1,11 @@
 //! Adaptive-step Dormand–Prince 5(4).
 
 use hooke_core::{
-    ForceEvaluator, History, Integrator, ParameterError, State, StepError, StepReport, System,
-    Vec3, check_step,
+    ForceEvaluator, Integrator, ParameterError, State, StepBuffers, StepError, StepReport, System,
+    Vec3,
 };
 
-use crate::ops::{combine, fit};
+use crate::ops::combine;
 
 /// Stage nodes are implied by `A`; the rows of the Butcher matrix, stage 2..7.
 const A: [&[f64]; 6] = [
@@ -114,7 +114,8 @@ pub struct DormandPrince {
     atol: f64,
     max_substeps: usize,
     forces: ForceEvaluator,
-    history: History,
+    /// The solution as substeps advance it, and the history.
+    out: StepBuffers,
     /// The controller's proposal for the next substep.
     proposal: Option<f64>,
     previous_error: f64,
@@ -123,32 +124,37 @@ pub struct DormandPrince {
     stage_v: [Vec<Vec3>; 7],
     stage_a: [Vec<Vec3>; 7],
     stage_x: Vec<Vec3>,
-    /// The solution as substeps advance it.
-    x: Vec<Vec3>,
-    v: Vec<Vec3>,
 }
 
 impl Default for DormandPrince {
-    /// `rtol = 1e-6`, `atol = 1e-9`, at most 100 000 substeps per step.
+    /// [`DormandPrince::RTOL`], [`DormandPrince::ATOL`], at most
+    /// [`DormandPrince::MAX_SUBSTEPS`] substeps per step.
     fn default() -> Self {
         Self {
-            rtol: 1e-6,
-            atol: 1e-9,
-            max_substeps: 100_000,
+            rtol: Self::RTOL,
+            atol: Self::ATOL,
+            max_substeps: Self::MAX_SUBSTEPS,
             forces: ForceEvaluator::default(),
-            history: History::default(),
+            out: StepBuffers::default(),
             proposal: None,
             previous_error: 1e-4,
             stage_v: Default::default(),
             stage_a: Default::default(),
             stage_x: Vec::new(),
-            x: Vec::new(),
-            v: Vec::new(),
         }
     }
 }
 
 impl DormandPrince {
+    /// The name scene files, reports and the command line use.
+    pub const NAME: &'static str = "dormand-prince";
+    /// The default relative tolerance.
+    pub const RTOL: f64 = 1e-6;
+    /// The default absolute tolerance, m and m/s.
+    pub const ATOL: f64 = 1e-9;
+    /// The default cap on substeps per call to [`Integrator::step`].
+    pub const MAX_SUBSTEPS: usize = 100_000;
+
     /// An integrator with relative tolerance `rtol` and absolute tolerance
     /// `atol` (in m for positions and m/s for velocities).
     ///
@@ -159,7 +165,7 @@ impl DormandPrince {
         for (name, value) in [("rtol", rtol), ("atol", atol)] {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(ParameterError::new(
-                    "dopri5",
+                    Self::NAME,
                     name,
                     value,
                     "finite and non-negative",
@@ -168,7 +174,7 @@ impl DormandPrince {
         }
         if rtol == 0.0 && atol == 0.0 {
             return Err(ParameterError::new(
-                "dopri5",
+                Self::NAME,
                 "atol",
                 atol,
                 "positive when rtol is zero",
@@ -201,7 +207,7 @@ impl DormandPrince {
     /// Hairer's starting step from `y₀`, `f(y₀)` (in stage 0) and one more
     /// force evaluation.
     fn initial_step(&mut self, system: &System) -> f64 {
-        let (x, v) = (&self.x[..], &self.v[..]);
+        let (x, v) = (&self.out.x[..], &self.out.v[..]);
         let (first_v, rest_v) = self.stage_v.split_at_mut(1);
         let (first_a, rest_a) = self.stage_a.split_at_mut(1);
         let (v0, a0, v1, a1) = (&first_v[0], &first_a[0], &mut rest_v[0], &mut rest_a[0]);
@@ -240,8 +246,8 @@ impl DormandPrince {
             let stage = s + 1;
             let (done_v, rest_v) = self.stage_v.split_at_mut(stage);
             let (done_a, rest_a) = self.stage_a.split_at_mut(stage);
-            for i in 0..self.x.len() {
-                let (mut xs, mut vs) = (self.x[i], self.v[i]);
+            for i in 0..self.out.x.len() {
+                let (mut xs, mut vs) = (self.out.x[i], self.out.v[i]);
                 for (j, &c) in row.iter().enumerate() {
                     xs += h * c * done_v[j][i];
                     vs += h * c * done_a[j][i];
@@ -253,7 +259,8 @@ impl DormandPrince {
                 .accelerations(system, &self.stage_x, &rest_v[0], &mut rest_a[0]);
         }
         let (sv, sa) = (&self.stage_v, &self.stage_a);
-        let pairs = [(&self.x[..], &self.stage_x[..]), (&self.v[..], &sv[6][..])];
+        let (x, v) = (&self.out.x[..], &self.out.v[..]);
+        let pairs = [(x, &self.stage_x[..]), (v, &sv[6][..])];
         scaled_max(self.rtol, self.atol, pairs, |part, i| {
             let k = if part == 0 { sv } else { sa };
             h * E
@@ -271,20 +278,17 @@ impl Integrator for DormandPrince {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
-        check_step(system, state, dt)?;
-        let continues = self.history.take(system, state).is_some();
-        let n = state.len();
-        fit(n, [&mut self.stage_x, &mut self.x, &mut self.v]);
-        for buffer in self.stage_v.iter_mut().chain(&mut self.stage_a) {
-            buffer.resize(n, Vec3::zeros());
-        }
-        self.x.copy_from_slice(state.positions());
-        self.v.copy_from_slice(state.velocities());
+        let stages = self.stage_v.iter_mut().chain(&mut self.stage_a);
+        let start = self
+            .out
+            .begin(system, state, dt, stages.chain([&mut self.stage_x]))?;
+        self.out.x.copy_from_slice(state.positions());
+        self.out.v.copy_from_slice(state.velocities());
         let mut report = StepReport::default();
-        if !continues {
-            self.stage_v[0].copy_from_slice(&self.v);
+        if start.previous_dt().is_none() {
+            self.stage_v[0].copy_from_slice(&self.out.v);
             self.forces
-                .accelerations(system, &self.x, &self.v, &mut self.stage_a[0]);
+                .accelerations(system, &self.out.x, &self.out.v, &mut self.stage_a[0]);
             self.proposal = Some(self.initial_step(system));
             self.previous_error = 1e-4;
             report.force_evaluations += 2;
@@ -315,8 +319,8 @@ impl Integrator for DormandPrince {
                     factor = factor.min(1.0);
                 }
                 self.previous_error = err.max(1e-4);
-                std::mem::swap(&mut self.x, &mut self.stage_x);
-                self.v.copy_from_slice(&self.stage_v[6]);
+                std::mem::swap(&mut self.out.x, &mut self.stage_x);
+                self.out.v.copy_from_slice(&self.stage_v[6]);
                 self.stage_v.swap(0, 6);
                 self.stage_a.swap(0, 6);
                 report.accepted_steps += 1;
@@ -343,13 +347,10 @@ impl Integrator for DormandPrince {
             }
         }
         self.proposal = Some(h);
-        state.commit(&mut self.x, &mut self.v, end)?;
-        self.history.record(system, state, dt);
-        report.contacts = system.end_step(state);
-        Ok(report)
+        self.out.finish(system, state, dt, report)
     }
 
     fn name(&self) -> &'static str {
-        "dopri5"
+        Self::NAME
     }
 }

@@ -1,10 +1,10 @@
 //! Explicit (forward) Euler.
 
 use hooke_core::{
-    ForceEvaluator, Integrator, State, StepError, StepReport, System, Vec3, check_step,
+    ForceEvaluator, Integrator, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
-use crate::ops::{combine, fit};
+use crate::ops::combine;
 
 /// Explicit (forward) Euler:
 ///
@@ -23,12 +23,14 @@ use crate::ops::{combine, fit};
 #[derive(Debug, Clone, Default)]
 pub struct ExplicitEuler {
     forces: ForceEvaluator,
+    out: StepBuffers,
     a: Vec<Vec3>,
-    x: Vec<Vec3>,
-    v: Vec<Vec3>,
 }
 
 impl ExplicitEuler {
+    /// The name scene files, reports and the command line use.
+    pub const NAME: &'static str = "explicit-euler";
+
     /// A new integrator.
     #[must_use]
     pub fn new() -> Self {
@@ -43,20 +45,16 @@ impl Integrator for ExplicitEuler {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
-        check_step(system, state, dt)?;
-        fit(state.len(), [&mut self.a, &mut self.x, &mut self.v]);
+        self.out.begin(system, state, dt, [&mut self.a])?;
         let (x0, v0) = (state.positions(), state.velocities());
         self.forces.accelerations(system, x0, v0, &mut self.a);
-        combine(&mut self.x, x0, &[(dt, v0)]);
-        combine(&mut self.v, v0, &[(dt, &self.a)]);
-        state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
-        Ok(StepReport {
-            contacts: system.end_step(state),
-            ..StepReport::fixed_step(1)
-        })
+        combine(&mut self.out.x, x0, &[(dt, v0)]);
+        combine(&mut self.out.v, v0, &[(dt, &self.a)]);
+        self.out
+            .finish(system, state, dt, StepReport::fixed_step(1))
     }
 
     fn name(&self) -> &'static str {
-        "explicit-euler"
+        Self::NAME
     }
 }

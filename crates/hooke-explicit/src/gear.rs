@@ -2,11 +2,10 @@
 //! second-order equations.
 
 use hooke_core::{
-    ForceEvaluator, History, Integrator, State, StepError, StepReport, System, Vec3, check_step,
+    ForceEvaluator, Integrator, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
 use crate::Rk4;
-use crate::ops::fit;
 
 /// Corrector coefficients for second-order equations (Gear 1966, five
 /// values).
@@ -55,7 +54,7 @@ const ALPHA: [f64; 5] = [19.0 / 120.0, 3.0 / 4.0, 1.0, 1.0 / 2.0, 1.0 / 12.0];
 #[derive(Debug, Clone, Default)]
 pub struct Gear {
     forces: ForceEvaluator,
-    history: History,
+    out: StepBuffers,
     starter: Rk4,
     /// `r₂`, `r₃`, `r₄`; `r₀` and `r₁` are the state's positions and `h` times
     /// its velocities.
@@ -63,11 +62,12 @@ pub struct Gear {
     r3: Vec<Vec3>,
     r4: Vec<Vec3>,
     a: Vec<Vec3>,
-    x: Vec<Vec3>,
-    v: Vec<Vec3>,
 }
 
 impl Gear {
+    /// The name scene files, reports and the command line use.
+    pub const NAME: &'static str = "gear";
+
     /// A new integrator.
     #[must_use]
     pub fn new() -> Self {
@@ -124,19 +124,8 @@ impl Integrator for Gear {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
-        check_step(system, state, dt)?;
-        let previous = self.history.take(system, state);
-        fit(
-            state.len(),
-            [
-                &mut self.r2,
-                &mut self.r3,
-                &mut self.r4,
-                &mut self.a,
-                &mut self.x,
-                &mut self.v,
-            ],
-        );
+        let buffers = [&mut self.r2, &mut self.r3, &mut self.r4, &mut self.a];
+        let previous = self.out.begin(system, state, dt, buffers)?.previous_dt();
         let h = dt;
         let mut evaluations = 1;
         match previous {
@@ -145,32 +134,28 @@ impl Integrator for Gear {
             None => evaluations += self.start(system, state, h)?,
         }
         let (x0, v0) = (state.positions(), state.velocities());
+        let StepBuffers { x, v, .. } = &mut self.out;
         for i in 0..state.len() {
             let (r1, r2, r3, r4) = (h * v0[i], self.r2[i], self.r3[i], self.r4[i]);
-            self.x[i] = x0[i] + r1 + r2 + r3 + r4;
-            self.v[i] = (r1 + 2.0 * r2 + 3.0 * r3 + 4.0 * r4) / h;
+            x[i] = x0[i] + r1 + r2 + r3 + r4;
+            v[i] = (r1 + 2.0 * r2 + 3.0 * r3 + 4.0 * r4) / h;
             self.r2[i] = r2 + 3.0 * r3 + 6.0 * r4;
             self.r3[i] = r3 + 4.0 * r4;
         }
-        self.forces
-            .accelerations(system, &self.x, &self.v, &mut self.a);
+        self.forces.accelerations(system, x, v, &mut self.a);
         for i in 0..state.len() {
             let delta = 0.5 * h * h * self.a[i] - self.r2[i];
-            self.x[i] += ALPHA[0] * delta;
-            self.v[i] += ALPHA[1] * delta / h;
+            x[i] += ALPHA[0] * delta;
+            v[i] += ALPHA[1] * delta / h;
             self.r2[i] += ALPHA[2] * delta;
             self.r3[i] += ALPHA[3] * delta;
             self.r4[i] += ALPHA[4] * delta;
         }
-        state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
-        self.history.record(system, state, dt);
-        Ok(StepReport {
-            contacts: system.end_step(state),
-            ..StepReport::fixed_step(evaluations)
-        })
+        self.out
+            .finish(system, state, dt, StepReport::fixed_step(evaluations))
     }
 
     fn name(&self) -> &'static str {
-        "gear"
+        Self::NAME
     }
 }

@@ -1,10 +1,10 @@
 //! Heun's method (explicit trapezoidal rule).
 
 use hooke_core::{
-    ForceEvaluator, Integrator, State, StepError, StepReport, System, Vec3, check_step,
+    ForceEvaluator, Integrator, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
-use crate::ops::{combine, fit};
+use crate::ops::combine;
 
 /// Heun's method: an Euler predictor corrected with the trapezoidal rule,
 ///
@@ -23,13 +23,15 @@ use crate::ops::{combine, fit};
 #[derive(Debug, Clone, Default)]
 pub struct Heun {
     forces: ForceEvaluator,
+    out: StepBuffers,
     a: Vec<Vec3>,
     a_predicted: Vec<Vec3>,
-    x: Vec<Vec3>,
-    v: Vec<Vec3>,
 }
 
 impl Heun {
+    /// The name scene files, reports and the command line use.
+    pub const NAME: &'static str = "heun";
+
     /// A new integrator.
     #[must_use]
     pub fn new() -> Self {
@@ -44,32 +46,27 @@ impl Integrator for Heun {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
-        check_step(system, state, dt)?;
-        fit(
-            state.len(),
-            [&mut self.a, &mut self.a_predicted, &mut self.x, &mut self.v],
-        );
+        let buffers = [&mut self.a, &mut self.a_predicted];
+        self.out.begin(system, state, dt, buffers)?;
         let (x0, v0) = (state.positions(), state.velocities());
         self.forces.accelerations(system, x0, v0, &mut self.a);
-        combine(&mut self.x, x0, &[(dt, v0)]);
-        combine(&mut self.v, v0, &[(dt, &self.a)]);
+        let out = &mut self.out;
+        combine(&mut out.x, x0, &[(dt, v0)]);
+        combine(&mut out.v, v0, &[(dt, &self.a)]);
         self.forces
-            .accelerations(system, &self.x, &self.v, &mut self.a_predicted);
+            .accelerations(system, &out.x, &out.v, &mut self.a_predicted);
         // x̃ − xₙ = h vₙ, so xₙ₊₁ = xₙ + (h/2) vₙ + (h/2) ṽ.
-        combine(&mut self.x, x0, &[(0.5 * dt, v0), (0.5 * dt, &self.v)]);
+        combine(&mut out.x, x0, &[(0.5 * dt, v0), (0.5 * dt, &out.v)]);
         combine(
-            &mut self.v,
+            &mut out.v,
             v0,
             &[(0.5 * dt, &self.a), (0.5 * dt, &self.a_predicted)],
         );
-        state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
-        Ok(StepReport {
-            contacts: system.end_step(state),
-            ..StepReport::fixed_step(2)
-        })
+        self.out
+            .finish(system, state, dt, StepReport::fixed_step(2))
     }
 
     fn name(&self) -> &'static str {
-        "heun"
+        Self::NAME
     }
 }

@@ -1,10 +1,10 @@
 //! Leapfrog, kick-drift-kick, with staggered velocities.
 
 use hooke_core::{
-    ForceEvaluator, History, Integrator, State, StepError, StepReport, System, Vec3, check_step,
+    ForceEvaluator, Integrator, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
-use crate::ops::{combine, fit};
+use crate::ops::combine;
 
 /// Leapfrog in kick-drift-kick form. Its own variable is the staggered
 /// velocity `vₙ₊½`; it starts with the half kick `v½ = v₀ + (h/2) a₀` and then
@@ -36,16 +36,17 @@ use crate::ops::{combine, fit};
 #[derive(Debug, Clone, Default)]
 pub struct Leapfrog {
     forces: ForceEvaluator,
-    history: History,
+    out: StepBuffers,
     /// `aₙ` at the state's positions.
     a: Vec<Vec3>,
     /// The staggered velocity `vₙ₊½`.
     v_half: Vec<Vec3>,
-    x: Vec<Vec3>,
-    v: Vec<Vec3>,
 }
 
 impl Leapfrog {
+    /// The name scene files, reports and the command line use.
+    pub const NAME: &'static str = "leapfrog";
+
     /// A new integrator.
     #[must_use]
     pub fn new() -> Self {
@@ -60,36 +61,30 @@ impl Integrator for Leapfrog {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
-        check_step(system, state, dt)?;
-        let continues = self.history.take_same_step(system, state, dt);
-        fit(
-            state.len(),
-            [&mut self.a, &mut self.v_half, &mut self.x, &mut self.v],
-        );
+        let start = self
+            .out
+            .begin(system, state, dt, [&mut self.a, &mut self.v_half])?;
         let (x0, v0) = (state.positions(), state.velocities());
         let mut evaluations = 1;
-        if !continues {
+        if !start.continues_same_step() {
             self.forces.accelerations(system, x0, v0, &mut self.a);
             combine(&mut self.v_half, v0, &[(0.5 * dt, &self.a)]);
             evaluations += 1;
         }
-        combine(&mut self.x, x0, &[(dt, &self.v_half)]);
-        combine(&mut self.v, &self.v_half, &[(0.5 * dt, &self.a)]);
+        let out = &mut self.out;
+        combine(&mut out.x, x0, &[(dt, &self.v_half)]);
+        combine(&mut out.v, &self.v_half, &[(0.5 * dt, &self.a)]);
         self.forces
-            .accelerations(system, &self.x, &self.v, &mut self.a);
-        combine(&mut self.v, &self.v_half, &[(0.5 * dt, &self.a)]);
-        state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
+            .accelerations(system, &out.x, &out.v, &mut self.a);
+        combine(&mut out.v, &self.v_half, &[(0.5 * dt, &self.a)]);
+        let report = out.finish(system, state, dt, StepReport::fixed_step(evaluations))?;
         for (vh, a) in self.v_half.iter_mut().zip(&self.a) {
             *vh += dt * a;
         }
-        self.history.record(system, state, dt);
-        Ok(StepReport {
-            contacts: system.end_step(state),
-            ..StepReport::fixed_step(evaluations)
-        })
+        Ok(report)
     }
 
     fn name(&self) -> &'static str {
-        "leapfrog"
+        Self::NAME
     }
 }

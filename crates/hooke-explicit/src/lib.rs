@@ -24,7 +24,9 @@
 //!
 //! Every integrator owns its buffers (a steady-state step allocates nothing),
 //! validates `dt` and the state, and leaves the state untouched when a step
-//! fails. Those that carry history between steps (leapfrog, the Verlets,
+//! fails: each brackets its formula with `hooke_core::StepBuffers`'s
+//! `begin` and `finish`. [`ExplicitMethod`] names the fixed-step ones, by
+//! their `NAME` constants, and builds them. Those that carry history between steps (leapfrog, the Verlets,
 //! Beeman, Gear, and Dormand–Prince's first-same-as-last stage) start
 //! themselves from a single state and restart whenever they are handed a state
 //! they did not produce.
@@ -51,6 +53,7 @@ mod euler;
 mod gear;
 mod heun;
 mod leapfrog;
+mod method;
 mod midpoint;
 mod ops;
 mod position_verlet;
@@ -64,25 +67,9 @@ pub use euler::ExplicitEuler;
 pub use gear::Gear;
 pub use heun::Heun;
 pub use leapfrog::Leapfrog;
+pub use method::{ExplicitMethod, fixed_step_integrators};
 pub use midpoint::Midpoint;
 pub use position_verlet::PositionVerlet;
 pub use rk4::Rk4;
 pub use symplectic_euler::SymplecticEuler;
 pub use velocity_verlet::VelocityVerlet;
-
-/// One of each fixed-step integrator, boxed, in the order of the table above.
-#[must_use]
-pub fn fixed_step_integrators() -> Vec<Box<dyn hooke_core::Integrator + Send>> {
-    vec![
-        Box::new(ExplicitEuler::new()),
-        Box::new(SymplecticEuler::new()),
-        Box::new(Leapfrog::new()),
-        Box::new(VelocityVerlet::new()),
-        Box::new(PositionVerlet::new()),
-        Box::new(Midpoint::new()),
-        Box::new(Heun::new()),
-        Box::new(Rk4::new()),
-        Box::new(Beeman::new()),
-        Box::new(Gear::new()),
-    ]
-}

@@ -1,10 +1,10 @@
 //! Explicit midpoint (second-order Runge–Kutta).
 
 use hooke_core::{
-    ForceEvaluator, Integrator, State, StepError, StepReport, System, Vec3, check_step,
+    ForceEvaluator, Integrator, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
-use crate::ops::{combine, fit};
+use crate::ops::combine;
 
 /// Explicit midpoint method, the second-order Runge–Kutta method with the
 /// derivative taken at the half step:
@@ -24,14 +24,16 @@ use crate::ops::{combine, fit};
 #[derive(Debug, Clone, Default)]
 pub struct Midpoint {
     forces: ForceEvaluator,
+    out: StepBuffers,
     a: Vec<Vec3>,
-    x: Vec<Vec3>,
-    v: Vec<Vec3>,
     x_half: Vec<Vec3>,
     v_half: Vec<Vec3>,
 }
 
 impl Midpoint {
+    /// The name scene files, reports and the command line use.
+    pub const NAME: &'static str = "midpoint";
+
     /// A new integrator.
     #[must_use]
     pub fn new() -> Self {
@@ -46,31 +48,21 @@ impl Integrator for Midpoint {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
-        check_step(system, state, dt)?;
-        let buffers = [
-            &mut self.a,
-            &mut self.x,
-            &mut self.v,
-            &mut self.x_half,
-            &mut self.v_half,
-        ];
-        fit(state.len(), buffers);
+        let buffers = [&mut self.a, &mut self.x_half, &mut self.v_half];
+        self.out.begin(system, state, dt, buffers)?;
         let (x0, v0) = (state.positions(), state.velocities());
         self.forces.accelerations(system, x0, v0, &mut self.a);
         combine(&mut self.x_half, x0, &[(0.5 * dt, v0)]);
         combine(&mut self.v_half, v0, &[(0.5 * dt, &self.a)]);
         self.forces
             .accelerations(system, &self.x_half, &self.v_half, &mut self.a);
-        combine(&mut self.x, x0, &[(dt, &self.v_half)]);
-        combine(&mut self.v, v0, &[(dt, &self.a)]);
-        state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
-        Ok(StepReport {
-            contacts: system.end_step(state),
-            ..StepReport::fixed_step(2)
-        })
+        combine(&mut self.out.x, x0, &[(dt, &self.v_half)]);
+        combine(&mut self.out.v, v0, &[(dt, &self.a)]);
+        self.out
+            .finish(system, state, dt, StepReport::fixed_step(2))
     }
 
     fn name(&self) -> &'static str {
-        "midpoint"
+        Self::NAME
     }
 }

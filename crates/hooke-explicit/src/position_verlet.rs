@@ -1,10 +1,10 @@
 //! Position (Störmer) Verlet.
 
 use hooke_core::{
-    ForceEvaluator, History, Integrator, State, StepError, StepReport, System, Vec3, check_step,
+    ForceEvaluator, Integrator, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
-use crate::ops::{combine, fit};
+use crate::ops::combine;
 
 /// Position (Störmer) Verlet, the two-step recurrence on positions:
 ///
@@ -32,14 +32,12 @@ use crate::ops::{combine, fit};
 #[derive(Debug, Clone, Default)]
 pub struct PositionVerlet {
     forces: ForceEvaluator,
-    history: History,
+    out: StepBuffers,
     /// `xₙ₋₁`.
     x_prev: Vec<Vec3>,
     /// `aₙ` at the state's positions.
     a: Vec<Vec3>,
     a_next: Vec<Vec3>,
-    x: Vec<Vec3>,
-    v: Vec<Vec3>,
 }
 
 /// `v = (x₁ − x₀)/h + (h/2) a`.
@@ -50,6 +48,9 @@ fn velocity(v: &mut [Vec3], x1: &[Vec3], x0: &[Vec3], a: &[Vec3], h: f64) {
 }
 
 impl PositionVerlet {
+    /// The name scene files, reports and the command line use.
+    pub const NAME: &'static str = "position-verlet";
+
     /// A new integrator.
     #[must_use]
     pub fn new() -> Self {
@@ -64,46 +65,33 @@ impl Integrator for PositionVerlet {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
-        check_step(system, state, dt)?;
-        let continues = self.history.take_same_step(system, state, dt);
-        fit(
-            state.len(),
-            [
-                &mut self.x_prev,
-                &mut self.a,
-                &mut self.a_next,
-                &mut self.x,
-                &mut self.v,
-            ],
-        );
+        let buffers = [&mut self.x_prev, &mut self.a, &mut self.a_next];
+        let start = self.out.begin(system, state, dt, buffers)?;
         let (x0, v0) = (state.positions(), state.velocities());
         let mut evaluations = 1;
-        if !continues {
+        if !start.continues_same_step() {
             self.forces.accelerations(system, x0, v0, &mut self.a);
             combine(&mut self.x_prev, x0, &[(-dt, v0), (0.5 * dt * dt, &self.a)]);
             evaluations += 1;
         }
+        let out = &mut self.out;
         combine(
-            &mut self.x,
+            &mut out.x,
             x0,
             &[(1.0, x0), (-1.0, &self.x_prev), (dt * dt, &self.a)],
         );
-        velocity(&mut self.v, &self.x, x0, &self.a, dt);
+        velocity(&mut out.v, &out.x, x0, &self.a, dt);
         self.forces
-            .accelerations(system, &self.x, &self.v, &mut self.a_next);
-        velocity(&mut self.v, &self.x, x0, &self.a_next, dt);
-        state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
+            .accelerations(system, &out.x, &out.v, &mut self.a_next);
+        velocity(&mut out.v, &out.x, x0, &self.a_next, dt);
+        let report = out.finish(system, state, dt, StepReport::fixed_step(evaluations))?;
         // `x` now holds the previous positions xₙ, which become xₙ₋₁.
-        std::mem::swap(&mut self.x_prev, &mut self.x);
+        std::mem::swap(&mut self.x_prev, &mut out.x);
         std::mem::swap(&mut self.a, &mut self.a_next);
-        self.history.record(system, state, dt);
-        Ok(StepReport {
-            contacts: system.end_step(state),
-            ..StepReport::fixed_step(evaluations)
-        })
+        Ok(report)
     }
 
     fn name(&self) -> &'static str {
-        "position-verlet"
+        Self::NAME
     }
 }

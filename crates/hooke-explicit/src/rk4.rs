@@ -1,10 +1,10 @@
 //! The classical fourth-order Runge–Kutta method.
 
 use hooke_core::{
-    ForceEvaluator, Integrator, State, StepError, StepReport, System, Vec3, check_step,
+    ForceEvaluator, Integrator, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
-use crate::ops::{combine, fit};
+use crate::ops::combine;
 
 /// Classical Runge–Kutta method on `y = (x, v)`, `y' = (v, a(x, v))`:
 ///
@@ -28,14 +28,16 @@ pub struct Rk4 {
     /// Stage acceleration.
     a: Vec<Vec3>,
     /// Stage position and velocity, then the result.
-    x: Vec<Vec3>,
-    v: Vec<Vec3>,
+    out: StepBuffers,
     /// `k₁ + 2k₂ + 2k₃ + k₄`, split into its position and velocity parts.
     sum_x: Vec<Vec3>,
     sum_v: Vec<Vec3>,
 }
 
 impl Rk4 {
+    /// The name scene files, reports and the command line use.
+    pub const NAME: &'static str = "rk4";
+
     /// A new integrator.
     #[must_use]
     pub fn new() -> Self {
@@ -50,42 +52,32 @@ impl Integrator for Rk4 {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
-        check_step(system, state, dt)?;
-        let buffers = [
-            &mut self.a,
-            &mut self.x,
-            &mut self.v,
-            &mut self.sum_x,
-            &mut self.sum_v,
-        ];
-        fit(state.len(), buffers);
+        let buffers = [&mut self.a, &mut self.sum_x, &mut self.sum_v];
+        self.out.begin(system, state, dt, buffers)?;
+        let StepBuffers { x, v, .. } = &mut self.out;
         let (x0, v0) = (state.positions(), state.velocities());
         self.forces.accelerations(system, x0, v0, &mut self.a);
         self.sum_x.copy_from_slice(v0);
         self.sum_v.copy_from_slice(&self.a);
-        combine(&mut self.x, x0, &[(0.5 * dt, v0)]);
-        combine(&mut self.v, v0, &[(0.5 * dt, &self.a)]);
+        combine(x, x0, &[(0.5 * dt, v0)]);
+        combine(v, v0, &[(0.5 * dt, &self.a)]);
         for (weight, next) in [(2.0, 0.5 * dt), (2.0, dt), (1.0, 0.0)] {
-            self.forces
-                .accelerations(system, &self.x, &self.v, &mut self.a);
+            self.forces.accelerations(system, x, v, &mut self.a);
             for i in 0..self.a.len() {
-                self.sum_x[i] += weight * self.v[i];
+                self.sum_x[i] += weight * v[i];
                 self.sum_v[i] += weight * self.a[i];
                 // The next stage: yₙ + next · (this stage's derivative).
-                self.x[i] = x0[i] + next * self.v[i];
-                self.v[i] = v0[i] + next * self.a[i];
+                x[i] = x0[i] + next * v[i];
+                v[i] = v0[i] + next * self.a[i];
             }
         }
-        combine(&mut self.x, x0, &[(dt / 6.0, &self.sum_x)]);
-        combine(&mut self.v, v0, &[(dt / 6.0, &self.sum_v)]);
-        state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
-        Ok(StepReport {
-            contacts: system.end_step(state),
-            ..StepReport::fixed_step(4)
-        })
+        combine(x, x0, &[(dt / 6.0, &self.sum_x)]);
+        combine(v, v0, &[(dt / 6.0, &self.sum_v)]);
+        self.out
+            .finish(system, state, dt, StepReport::fixed_step(4))
     }
 
     fn name(&self) -> &'static str {
-        "rk4"
+        Self::NAME
     }
 }

@@ -1,10 +1,10 @@
 //! Velocity Verlet.
 
 use hooke_core::{
-    ForceEvaluator, History, Integrator, State, StepError, StepReport, System, Vec3, check_step,
+    ForceEvaluator, Integrator, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
-use crate::ops::{combine, fit};
+use crate::ops::combine;
 
 /// Velocity Verlet:
 ///
@@ -29,15 +29,16 @@ use crate::ops::{combine, fit};
 #[derive(Debug, Clone, Default)]
 pub struct VelocityVerlet {
     forces: ForceEvaluator,
-    history: History,
+    out: StepBuffers,
     /// `aₙ` at the state's positions.
     a: Vec<Vec3>,
     a_next: Vec<Vec3>,
-    x: Vec<Vec3>,
-    v: Vec<Vec3>,
 }
 
 impl VelocityVerlet {
+    /// The name scene files, reports and the command line use.
+    pub const NAME: &'static str = "velocity-verlet";
+
     /// A new integrator.
     #[must_use]
     pub fn new() -> Self {
@@ -52,37 +53,31 @@ impl Integrator for VelocityVerlet {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
-        check_step(system, state, dt)?;
-        let continues = self.history.take_same_step(system, state, dt);
-        fit(
-            state.len(),
-            [&mut self.a, &mut self.a_next, &mut self.x, &mut self.v],
-        );
+        let start = self
+            .out
+            .begin(system, state, dt, [&mut self.a, &mut self.a_next])?;
         let (x0, v0) = (state.positions(), state.velocities());
         let mut evaluations = 1;
-        if !continues {
+        if !start.continues_same_step() {
             self.forces.accelerations(system, x0, v0, &mut self.a);
             evaluations += 1;
         }
-        combine(&mut self.x, x0, &[(dt, v0), (0.5 * dt * dt, &self.a)]);
-        combine(&mut self.v, v0, &[(dt, &self.a)]);
+        let out = &mut self.out;
+        combine(&mut out.x, x0, &[(dt, v0), (0.5 * dt * dt, &self.a)]);
+        combine(&mut out.v, v0, &[(dt, &self.a)]);
         self.forces
-            .accelerations(system, &self.x, &self.v, &mut self.a_next);
+            .accelerations(system, &out.x, &out.v, &mut self.a_next);
         combine(
-            &mut self.v,
+            &mut out.v,
             v0,
             &[(0.5 * dt, &self.a), (0.5 * dt, &self.a_next)],
         );
-        state.commit(&mut self.x, &mut self.v, state.time() + dt)?;
+        let report = out.finish(system, state, dt, StepReport::fixed_step(evaluations))?;
         std::mem::swap(&mut self.a, &mut self.a_next);
-        self.history.record(system, state, dt);
-        Ok(StepReport {
-            contacts: system.end_step(state),
-            ..StepReport::fixed_step(evaluations)
-        })
+        Ok(report)
     }
 
     fn name(&self) -> &'static str {
-        "velocity-verlet"
+        Self::NAME
     }
 }

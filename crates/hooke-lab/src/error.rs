@@ -22,6 +22,12 @@ pub enum LabError {
     /// A method parameter out of range.
     #[error(transparent)]
     Parameter(#[from] ParameterError),
+    /// Partial reports that are not the parts of one sharded sweep.
+    #[error("cannot merge: {reason}")]
+    Merge {
+        /// What does not fit.
+        reason: String,
+    },
     /// The numerical reference run failed.
     #[error("the reference run ({method} at dt = {dt} s) failed: {reason}")]
     Reference {

@@ -1,24 +1,35 @@
 //! Measurements of mass-spring integrators on a user's scene: which stay
 //! stable at which stiffness and timestep ([`mod@stability`]), and what
-//! accuracy each buys per second of run time ([`mod@accuracy`]), with the
-//! figures of both ([`plot`]).
+//! accuracy each buys per second of run time ([`mod@accuracy`]). Their
+//! figures are drawn by `hooke-viz`; this crate draws nothing.
 //!
 //! Every measurement runs the scene's [`System`](hooke_core::System) with
 //! the integrators of `hooke-explicit` and `hooke-implicit`
-//! ([`Method::ALL`]) through [`trial::run`], which times the steps alone.
+//! ([`Method::ALL`]) through [`Simulation`](hooke_core::Simulation), which
+//! times the steps alone; a stability run watches its [`EnergyBudget`].
+//!
+//! A sweep runs on many machines in parts: with a [`Shard`] in its options
+//! each part runs its share of the jobs, dealt by their number, and
+//! [`StabilityReport::merge`] or [`AccuracyReport::merge`] combines the
+//! parts' reports into the unsharded one ([`mod@merge`]).
 
 pub mod accuracy;
+mod budget;
 mod error;
-mod method;
-pub mod plot;
+mod json;
+pub mod merge;
 mod range;
+mod settings;
+mod shard;
 mod spectrum;
 pub mod stability;
-pub mod trial;
 
 pub use accuracy::{AccuracyOptions, AccuracyReport, accuracy};
+pub use budget::EnergyBudget;
 pub use error::LabError;
-pub use method::{Method, OscillatorStability, Settings};
+pub use hooke_scenes::{Method, OscillatorStability};
 pub use range::Range;
+pub use settings::Settings;
+pub use shard::{Shard, interleave};
 pub use spectrum::{MAX_ITERATIONS, Spectrum, omega_max};
 pub use stability::{StabilityOptions, StabilityReport, stability};

@@ -2,9 +2,10 @@
 //! on the damped oscillator, its closed form, and the numerical
 //! reference's error estimate.
 
-use hooke_core::Vec3;
+use std::ops::ControlFlow;
+
+use hooke_core::{ObserveFn, Simulation, State, StepInfo, System, Vec3};
 use hooke_lab::accuracy::{AxialOscillator, ReferenceChoice, ReferenceKind};
-use hooke_lab::trial::{Flow, run};
 use hooke_lab::{AccuracyOptions, LabError, Method, accuracy};
 use hooke_scenes::{ExplicitMethod, builtin};
 
@@ -84,25 +85,22 @@ fn the_richardson_estimate_is_within_a_factor_two_of_the_references_true_error()
     let closed = AxialOscillator::of(&scene.system).unwrap();
     let interval = options.duration / options.frames as f64;
     let per_frame = (interval / h).round() as usize;
-    let mut integrator = Method::Explicit(ExplicitMethod::Rk4)
-        .build(&options.settings, None)
+    let mut integrator = options
+        .settings
+        .build(Method::Explicit(ExplicitMethod::Rk4), None)
         .unwrap();
     let mut true_error = 0.0_f64;
-    let outcome = run(
-        &scene.system,
-        &mut integrator,
-        h,
-        per_frame * options.frames,
-        |n, state| {
-            if n % per_frame == 0 {
-                let t = interval * (n / per_frame) as f64;
-                let bob: Vec3 = state.positions()[closed.bob];
-                true_error = true_error.max((bob - closed.bob_position(t)).norm());
-            }
-            Flow::Continue
-        },
-    );
-    assert!(outcome.failure.is_none());
+    let mut state = scene.system.initial_state();
+    let mut compare = ObserveFn(|_: &System, state: &State, step: &StepInfo| {
+        let t = interval * (step.index / per_frame) as f64;
+        let bob: Vec3 = state.positions()[closed.bob];
+        true_error = true_error.max((bob - closed.bob_position(t)).norm());
+        ControlFlow::Continue(())
+    });
+    let run = Simulation::new(&scene.system, &mut integrator)
+        .observe(per_frame, &mut compare)
+        .run_to_end(&mut state, h, per_frame * options.frames);
+    assert!(run.failure().is_none());
     let ratio = reference.estimated_error / true_error;
     assert!(
         (0.5..=2.0).contains(&ratio),

@@ -79,7 +79,7 @@ fn least_wall_time(report: &AccuracyReport, method: Method) -> Option<f64> {
     report
         .runs
         .iter()
-        .filter(|r| r.integrator == method.name())
+        .filter(|r| r.integrator == method)
         .filter(|r| r.error_rms.is_some_and(|e| e <= TARGET))
         .map(|r| r.wall_s)
         .reduce(f64::min)

@@ -2,19 +2,20 @@
 //! builds, files say what the scene holds, and each kind of malformed file
 //! is an error naming the file, the line and the key.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use hooke_core::{Path as Motion, Shape, Vec3};
 use hooke_implicit::{Implicit, Scheme};
 use hooke_scenes::file::{self, ErrorKind, SceneFileError};
-use hooke_scenes::{ExplicitMethod, IntegratorSpec, SolverSpec, builtin};
+use hooke_scenes::{IntegratorSpec, SolverSpec, builtin};
 
+use common::{CLOTH, parse};
+
+/// The shipped scene files.
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
-}
-
-fn parse(text: &str) -> Result<hooke_scenes::Scene, SceneFileError> {
-    file::parse(text, Path::new("test.toml"))
 }
 
 /// Parses `text`, expects an error, and checks its file, line and key, in
@@ -31,14 +32,6 @@ fn error_at(text: &str, line: usize, key: &str) -> SceneFileError {
     );
     error
 }
-
-const CLOTH: &str = r#"
-[[bodies]]
-type = "cloth"
-columns = 4
-rows = 3
-stretch = { stiffness = 100.0 }
-"#;
 
 #[test]
 fn every_shipped_scene_loads_and_builds() {
@@ -197,34 +190,6 @@ fn a_cloth_file_says_what_the_scene_holds() {
         (0.4, 0.1)
     );
     assert!(matches!(&obstacles[1].path, Motion::Keyframes(k) if k.len() == 2));
-}
-
-#[test]
-fn defaults_are_backward_euler_cholesky_one_newton_iteration() {
-    let scene = parse(CLOTH).unwrap();
-    assert_eq!(scene.integrator, IntegratorSpec::backward_euler());
-    assert!((scene.timing.frame_rate - 60.0).abs() < 1e-12);
-    assert_eq!(scene.name, "test");
-    assert_eq!(scene.system.particle_count(), 12);
-}
-
-#[test]
-fn explicit_and_adaptive_methods_are_named_as_the_integrators_are() {
-    for method in ExplicitMethod::ALL {
-        let text = format!("[integrator]\nmethod = \"{}\"\n{CLOTH}", method.name());
-        assert_eq!(
-            parse(&text).unwrap().integrator,
-            IntegratorSpec::Explicit(method)
-        );
-    }
-    let text = format!("[integrator]\nmethod = \"dormand-prince\"\nrtol = 1e-5\n{CLOTH}");
-    assert_eq!(
-        parse(&text).unwrap().integrator,
-        IntegratorSpec::Adaptive {
-            rtol: 1e-5,
-            atol: 1e-9
-        }
-    );
 }
 
 #[test]

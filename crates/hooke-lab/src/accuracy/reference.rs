@@ -3,17 +3,17 @@
 //! Richardson estimate of its own error.
 
 use std::cmp::Ordering;
+use std::ops::ControlFlow;
 
 #[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 use hooke_core::reference::Oscillator;
-use hooke_core::{Path, System, Vec3};
+use hooke_core::{ObserveFn, Path, Simulation, State, StepInfo, System, Vec3};
 use hooke_scenes::ExplicitMethod;
 
 use crate::LabError;
-use crate::method::{Method, Settings};
-use crate::trial::{Flow, run};
+use crate::{Method, Settings};
 
 /// Relative size below which a component across the axis counts as zero.
 const ACROSS: f64 = 1e-12;
@@ -205,21 +205,17 @@ pub(crate) fn numerical(
     let solve = |&factor: &usize| -> Result<Checkpoints, LabError> {
         let per_frame = coarse_per_frame * (4 / factor);
         let step = interval / per_frame as f64;
-        let mut integrator = REFERENCE_METHOD.build(&Settings::default(), None)?;
+        let mut integrator = Settings::default().build(REFERENCE_METHOD, None)?;
         let mut checkpoints = Vec::with_capacity(frames);
-        let outcome = run(
-            system,
-            &mut integrator,
-            step,
-            per_frame * frames,
-            |n, state| {
-                if n % per_frame == 0 {
-                    checkpoints.push(state.positions().to_vec());
-                }
-                Flow::Continue
-            },
-        );
-        match outcome.failure {
+        let mut state = system.initial_state();
+        let mut record = ObserveFn(|_: &System, state: &State, _: &StepInfo| {
+            checkpoints.push(state.positions().to_vec());
+            ControlFlow::Continue(())
+        });
+        let run = Simulation::new(system, &mut integrator)
+            .observe(per_frame, &mut record)
+            .run_to_end(&mut state, step, per_frame * frames);
+        match run.failure() {
             None => Ok(checkpoints),
             Some(error) => Err(LabError::Reference {
                 method: REFERENCE_METHOD.name(),

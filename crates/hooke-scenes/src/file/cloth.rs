@@ -3,10 +3,10 @@
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::bodies::{At, Built, Common, PinNames, family, within_limit};
+use super::bodies::{At, Built, PinNames, family, finish, shared, within_limit};
 use super::error::{SceneFileError, Source};
 use super::schema::{MovingPin, PinRef, Rotation, SpringsTable, Vector};
-use super::values::{count, key, mass, rotation, vector};
+use super::values::{count, key, rotation, vector};
 use crate::{Cloth, Plane};
 
 /// `type = "cloth"`.
@@ -86,18 +86,12 @@ pub(crate) fn cloth(src: &Source<'_>, t: ClothTable, at: &At) -> Result<Built, S
     if let Some(s) = family(src, t.bend.as_ref(), &at.key, "bend")? {
         cloth = cloth.bend(s);
     }
-    if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m²")? {
-        cloth = cloth.mass(m);
-    }
-    Ok(Built {
-        body: cloth
-            .build()
-            .map_err(|e| src.scene(e, at.span.clone(), &at.key))?,
-        names: PinNames::Cloth { columns, rows },
-        common: Common {
-            name: t.name,
-            pins: t.pins,
-            moving_pins: t.moving_pins,
-        },
-    })
+    finish(
+        src,
+        at,
+        at,
+        cloth,
+        shared!(t),
+        ("kg/m²", PinNames::Cloth { columns, rows }),
+    )
 }

@@ -3,13 +3,13 @@
 
 use std::ops::Range;
 
-use hooke_implicit::{Implicit, Scheme};
+use hooke_implicit::{PcgSettings, Scheme};
 use toml::Spanned;
 
 use super::error::{ErrorKind, SceneFileError, Source};
 use super::schema::{IntegratorTable, Simulation};
 use super::values::positive;
-use crate::{ExplicitMethod, IntegratorSpec, SolverSpec, Timing};
+use crate::{IntegratorSpec, Method, SolverSpec, Timing};
 
 /// Defaults of `[simulation]`: 5 s at 1/60 s steps, 60 frames per second.
 const DEFAULT_TIMING: Timing = Timing {
@@ -17,9 +17,6 @@ const DEFAULT_TIMING: Timing = Timing {
     dt: 1.0 / 60.0,
     frame_rate: 60.0,
 };
-
-/// The method names of the implicit and adaptive integrators.
-const OTHER_METHODS: [&str; 3] = ["backward-euler", "bdf2", "dormand-prince"];
 
 /// The timing: every value finite and positive, the step no longer than
 /// the run.
@@ -60,20 +57,22 @@ pub(crate) fn timing(
 }
 
 /// The integrator: backward Euler with Cholesky and converged Newton steps
-/// unless the table says otherwise. Keys that do not apply to the chosen
-/// method or solver are errors.
+/// unless the table says otherwise; every default is the integrator's own
+/// ([`IntegratorSpec::new`], [`PcgSettings::default`]). Keys that do not apply
+/// to the chosen method or solver are errors.
 pub(crate) fn integrator(
     src: &Source<'_>,
     table: Option<&Spanned<IntegratorTable>>,
 ) -> Result<IntegratorSpec, SceneFileError> {
+    let default = Method::BackwardEuler;
     let Some(table) = table else {
-        return Ok(IntegratorSpec::backward_euler());
+        return Ok(IntegratorSpec::new(default));
     };
     let t = table.get_ref();
     let method = t
         .method
         .as_ref()
-        .map_or("backward-euler", |m| m.get_ref().as_str());
+        .map_or(default.name(), |m| m.get_ref().as_str());
     let not_for = |span: Range<usize>, key: &str, applies_to: &str| {
         src.invalid(
             span,
@@ -110,82 +109,47 @@ pub(crate) fn integrator(
             .find_map(|(key, span)| span.clone().map(|s| not_for(s, key, applies_to)))
             .map_or(Ok(()), Err)
     };
-    let scheme = match method {
-        "backward-euler" => Some(Scheme::BackwardEuler),
-        "bdf2" => Some(Scheme::Bdf2),
-        _ => None,
-    };
-    let spec = if let Some(scheme) = scheme {
-        reject(&adaptive_only, "method \"dormand-prince\"")?;
-        let solver = match t.solver.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
-            None | Some(("cholesky", _)) => {
-                reject(&pcg_only, "solver \"pcg\"")?;
-                SolverSpec::Cholesky
-            }
-            Some(("pcg", _)) => SolverSpec::Pcg {
-                tolerance: t.tolerance.as_ref().map_or(1e-6, |v| *v.get_ref()),
-                max_iterations: t.max_iterations.as_ref().map_or(1000, |v| *v.get_ref()),
-            },
-            Some((other, span)) => {
-                return Err(src.invalid(
-                    span,
-                    "integrator.solver",
-                    format!("\"{other}\""),
-                    "\"cholesky\" or \"pcg\"",
-                ));
-            }
-        };
-        let linearized = match t.step.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
-            None | Some(("converged", _)) => false,
-            Some(("linearized", _)) => true,
-            Some((other, span)) => {
-                return Err(src.invalid(
-                    span,
-                    "integrator.step",
-                    format!("\"{other}\""),
-                    "\"converged\" or \"linearized\"",
-                ));
-            }
-        };
-        IntegratorSpec::Implicit {
-            scheme,
-            solver,
-            linearized,
-            newton_iterations: t
-                .newton_iterations
-                .as_ref()
-                .map_or(Implicit::NEWTON_ITERATIONS, |v| *v.get_ref()),
-            newton_tolerance: t
-                .newton_tolerance
-                .as_ref()
-                .map_or(Implicit::NEWTON_TOLERANCE, |v| *v.get_ref()),
-        }
-    } else if method == "dormand-prince" {
-        reject(&implicit_only, "methods \"backward-euler\" and \"bdf2\"")?;
-        reject(&pcg_only, "solver \"pcg\"")?;
-        IntegratorSpec::Adaptive {
-            rtol: t.rtol.as_ref().map_or(1e-6, |v| *v.get_ref()),
-            atol: t.atol.as_ref().map_or(1e-9, |v| *v.get_ref()),
-        }
-    } else if let Some(explicit) = ExplicitMethod::ALL.iter().find(|m| m.name() == method) {
-        reject(&implicit_only, "methods \"backward-euler\" and \"bdf2\"")?;
-        reject(&pcg_only, "solver \"pcg\"")?;
-        reject(&adaptive_only, "method \"dormand-prince\"")?;
-        IntegratorSpec::Explicit(*explicit)
-    } else {
-        let names: Vec<String> = OTHER_METHODS
-            .iter()
-            .copied()
-            .chain(ExplicitMethod::ALL.iter().map(|m| m.name()))
-            .map(|n| format!("\"{n}\""))
-            .collect();
+    let Some(chosen) = Method::from_name(method) else {
         let span = t.method.as_ref().map_or(table.span(), Spanned::span);
         return Err(src.invalid(
             span,
             "integrator.method",
             format!("\"{method}\""),
-            format!("one of {}", names.join(", ")),
+            format!("one of {}", Method::names()),
         ));
+    };
+    let adaptive_name = format!("method \"{}\"", Method::DormandPrince);
+    let implicit_names = format!(
+        "methods \"{}\" and \"{}\"",
+        Method::BackwardEuler,
+        Method::Bdf2
+    );
+    let spec = match IntegratorSpec::new(chosen) {
+        IntegratorSpec::Implicit {
+            scheme,
+            newton_iterations,
+            newton_tolerance,
+            ..
+        } => {
+            reject(&adaptive_only, &adaptive_name)?;
+            let reject_pcg = || reject(&pcg_only, "solver \"pcg\"");
+            let defaults = (newton_iterations, newton_tolerance);
+            implicit(src, t, scheme, defaults, reject_pcg)?
+        }
+        IntegratorSpec::Adaptive { rtol, atol } => {
+            reject(&implicit_only, &implicit_names)?;
+            reject(&pcg_only, "solver \"pcg\"")?;
+            IntegratorSpec::Adaptive {
+                rtol: t.rtol.as_ref().map_or(rtol, |v| *v.get_ref()),
+                atol: t.atol.as_ref().map_or(atol, |v| *v.get_ref()),
+            }
+        }
+        explicit @ IntegratorSpec::Explicit(_) => {
+            reject(&implicit_only, &implicit_names)?;
+            reject(&pcg_only, "solver \"pcg\"")?;
+            reject(&adaptive_only, &adaptive_name)?;
+            explicit
+        }
     };
     // The integrators check their own parameter ranges; point at the key.
     spec.build().map_err(|e| {
@@ -217,4 +181,68 @@ pub(crate) fn integrator(
         )
     })?;
     Ok(spec)
+}
+
+/// The keys of an implicit method's table over the defaults `(newton
+/// iterations, newton tolerance)` of `scheme`; `reject_pcg` fails if the
+/// table has PCG's keys, for Cholesky.
+fn implicit(
+    src: &Source<'_>,
+    t: &IntegratorTable,
+    scheme: Scheme,
+    (newton_iterations, newton_tolerance): (usize, f64),
+    reject_pcg: impl FnOnce() -> Result<(), SceneFileError>,
+) -> Result<IntegratorSpec, SceneFileError> {
+    let solver = match t.solver.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
+        None | Some(("cholesky", _)) => {
+            reject_pcg()?;
+            SolverSpec::Cholesky
+        }
+        Some(("pcg", _)) => {
+            let defaults = PcgSettings::default();
+            SolverSpec::Pcg {
+                tolerance: t
+                    .tolerance
+                    .as_ref()
+                    .map_or(defaults.tolerance(), |v| *v.get_ref()),
+                max_iterations: t
+                    .max_iterations
+                    .as_ref()
+                    .map_or(defaults.max_iterations(), |v| *v.get_ref()),
+            }
+        }
+        Some((other, span)) => {
+            return Err(src.invalid(
+                span,
+                "integrator.solver",
+                format!("\"{other}\""),
+                "\"cholesky\" or \"pcg\"",
+            ));
+        }
+    };
+    let linearized = match t.step.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
+        None | Some(("converged", _)) => false,
+        Some(("linearized", _)) => true,
+        Some((other, span)) => {
+            return Err(src.invalid(
+                span,
+                "integrator.step",
+                format!("\"{other}\""),
+                "\"converged\" or \"linearized\"",
+            ));
+        }
+    };
+    Ok(IntegratorSpec::Implicit {
+        scheme,
+        solver,
+        linearized,
+        newton_iterations: t
+            .newton_iterations
+            .as_ref()
+            .map_or(newton_iterations, |v| *v.get_ref()),
+        newton_tolerance: t
+            .newton_tolerance
+            .as_ref()
+            .map_or(newton_tolerance, |v| *v.get_ref()),
+    })
 }

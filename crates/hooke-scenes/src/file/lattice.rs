@@ -3,10 +3,10 @@
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::bodies::{At, Built, Common, PinNames, family, within_limit};
+use super::bodies::{At, Built, PinNames, family, finish, shared, within_limit};
 use super::error::{SceneFileError, Source};
 use super::schema::{MovingPin, PinRef, SpringsTable, Vector};
-use super::values::{key, mass, positive_vector, vector};
+use super::values::{key, positive_vector, vector};
 use crate::{Lattice, TetSplit};
 
 /// `type = "lattice"`.
@@ -79,18 +79,5 @@ pub(crate) fn lattice(src: &Source<'_>, t: LatticeTable, at: &At) -> Result<Buil
     if let Some(s) = family(src, t.body_diagonals.as_ref(), &at.key, "body_diagonals")? {
         lattice = lattice.body_diagonals(s);
     }
-    if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m³")? {
-        lattice = lattice.mass(m);
-    }
-    Ok(Built {
-        body: lattice
-            .build()
-            .map_err(|e| src.scene(e, at.span.clone(), &at.key))?,
-        names: PinNames::None,
-        common: Common {
-            name: t.name,
-            pins: t.pins,
-            moving_pins: t.moving_pins,
-        },
-    })
+    finish(src, at, at, lattice, shared!(t), ("kg/m³", PinNames::None))
 }

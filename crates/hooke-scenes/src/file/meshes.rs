@@ -7,10 +7,10 @@ use hooke_core::Vec3;
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::bodies::{At, Built, Common, PinNames, family, scale};
+use super::bodies::{At, Built, PinNames, family, finish, scale, shared};
 use super::error::{SceneFileError, Source};
 use super::schema::{MovingPin, PinRef, SpringsTable, Vector};
-use super::values::{key, mass, positive, vector};
+use super::values::{key, positive, vector};
 use crate::{Layered, SceneError, Shell, Solid, TetMesh, TriangleMesh, obj, tetgen};
 
 /// Where a scene's mesh files come from.
@@ -104,7 +104,7 @@ pub(crate) fn tet_mesh(
     t: TetMeshTable,
     at: &At,
 ) -> Result<Built, SceneFileError> {
-    let mesh_key = key(&at.key, "mesh");
+    let mesh_at = mesh_at(at, &t.mesh);
     let name = t.mesh.get_ref();
     let base = [".node", ".ele"]
         .iter()
@@ -112,7 +112,7 @@ pub(crate) fn tet_mesh(
         .unwrap_or(name);
     let mut mesh = meshes
         .tets(base)
-        .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?;
+        .map_err(|e| src.scene(e, mesh_at.span.clone(), &mesh_at.key))?;
     placed(
         src,
         &mut mesh.vertices,
@@ -124,20 +124,14 @@ pub(crate) fn tet_mesh(
     if let Some(s) = family(src, t.edges.as_ref(), &at.key, "edges")? {
         solid = solid.edges(s);
     }
-    if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m³")? {
-        solid = solid.mass(m);
-    }
-    Ok(Built {
-        body: solid
-            .build()
-            .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?,
-        names: PinNames::None,
-        common: Common {
-            name: t.name,
-            pins: t.pins,
-            moving_pins: t.moving_pins,
-        },
-    })
+    finish(
+        src,
+        at,
+        &mesh_at,
+        solid,
+        shared!(t),
+        ("kg/m³", PinNames::None),
+    )
 }
 
 /// `type = "obj"`.
@@ -167,10 +161,10 @@ pub(crate) fn obj_shell(
     t: ObjTable,
     at: &At,
 ) -> Result<Built, SceneFileError> {
-    let mesh_key = key(&at.key, "mesh");
+    let mesh_at = mesh_at(at, &t.mesh);
     let mut mesh = meshes
         .surface(t.mesh.get_ref())
-        .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?;
+        .map_err(|e| src.scene(e, mesh_at.span.clone(), &mesh_at.key))?;
     placed(
         src,
         &mut mesh.vertices,
@@ -185,20 +179,14 @@ pub(crate) fn obj_shell(
     if let Some(s) = family(src, t.bend.as_ref(), &at.key, "bend")? {
         shell = shell.bend(s);
     }
-    if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m²")? {
-        shell = shell.mass(m);
-    }
-    Ok(Built {
-        body: shell
-            .build()
-            .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?,
-        names: PinNames::None,
-        common: Common {
-            name: t.name,
-            pins: t.pins,
-            moving_pins: t.moving_pins,
-        },
-    })
+    finish(
+        src,
+        at,
+        &mesh_at,
+        shell,
+        shared!(t),
+        ("kg/m²", PinNames::None),
+    )
 }
 
 /// `type = "layered"`.
@@ -230,11 +218,11 @@ pub(crate) fn layered(
     t: LayeredTable,
     at: &At,
 ) -> Result<Built, SceneFileError> {
-    let mesh_key = key(&at.key, "mesh");
+    let mesh_at = mesh_at(at, &t.mesh);
     let thickness = positive(src, &t.thickness, &key(&at.key, "thickness"), "m")?;
     let mut mesh = meshes
         .surface(t.mesh.get_ref())
-        .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?;
+        .map_err(|e| src.scene(e, mesh_at.span.clone(), &mesh_at.key))?;
     placed(
         src,
         &mut mesh.vertices,
@@ -252,18 +240,21 @@ pub(crate) fn layered(
     if let Some(s) = family(src, t.cross.as_ref(), &at.key, "cross")? {
         body = body.cross(s);
     }
-    if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m³")? {
-        body = body.mass(m);
+    finish(
+        src,
+        at,
+        &mesh_at,
+        body,
+        shared!(t),
+        ("kg/m³", PinNames::None),
+    )
+}
+
+/// Where the `mesh` key of the body table at `at` is: what a body built
+/// from a mesh file points at when it cannot be built.
+fn mesh_at(at: &At, mesh: &Spanned<String>) -> At {
+    At {
+        key: key(&at.key, "mesh"),
+        span: mesh.span(),
     }
-    Ok(Built {
-        body: body
-            .build()
-            .map_err(|e| src.scene(e, t.mesh.span(), &mesh_key))?,
-        names: PinNames::None,
-        common: Common {
-            name: t.name,
-            pins: t.pins,
-            moving_pins: t.moving_pins,
-        },
-    })
 }

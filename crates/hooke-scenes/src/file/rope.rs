@@ -3,10 +3,10 @@
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::bodies::{At, Built, Common, PinNames, family, within_limit};
+use super::bodies::{At, Built, PinNames, family, finish, shared, within_limit};
 use super::error::{SceneFileError, Source};
 use super::schema::{MovingPin, PinRef, SpringsTable, Vector};
-use super::values::{count, key, mass, non_negative, vector};
+use super::values::{count, key, non_negative, vector};
 use crate::Rope;
 
 /// `type = "rope"`.
@@ -61,18 +61,12 @@ pub(crate) fn rope(src: &Source<'_>, t: RopeTable, at: &At) -> Result<Built, Sce
         rope =
             rope.rest_length_fraction(non_negative(src, fraction, &key, "of the initial length")?);
     }
-    if let Some(m) = mass(src, t.mass.as_ref(), t.density.as_ref(), &at.key, "kg/m")? {
-        rope = rope.mass(m);
-    }
-    Ok(Built {
-        body: rope
-            .build()
-            .map_err(|e| src.scene(e, at.span.clone(), &at.key))?,
-        names: PinNames::Rope { segments },
-        common: Common {
-            name: t.name,
-            pins: t.pins,
-            moving_pins: t.moving_pins,
-        },
-    })
+    finish(
+        src,
+        at,
+        at,
+        rope,
+        shared!(t),
+        ("kg/m", PinNames::Rope { segments }),
+    )
 }

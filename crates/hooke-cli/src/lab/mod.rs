@@ -1,0 +1,168 @@
+//! `hooke stability`, `hooke accuracy` and `hooke merge`: the lab's
+//! measurements from the command line, written as JSON, CSV, PNG and SVG
+//! into `--out DIR`, whole or (with `--shard I/N`) in parts to merge.
+
+mod accuracy;
+mod files;
+mod merge;
+mod stability;
+
+use std::path::PathBuf;
+
+use clap::Args;
+use hooke_lab::{LabError, Method, Range, Shard};
+use hooke_scenes::{Scene, SolverSpec};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::cli::load_scene;
+use crate::cli_error::CliError;
+
+pub(crate) use accuracy::{AccuracyArgs, accuracy_command};
+pub(crate) use merge::{MergeArgs, merge_command};
+pub(crate) use stability::{StabilityArgs, stability_command};
+
+/// Values given on the command line as a comma-separated list of numbers
+/// and log-spaced ranges `FIRST:LAST:COUNT`, e.g. `1e-3:1e-1:9` or
+/// `0.01,0.02,0.05`; kept sorted, without repeats.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Values(Vec<f64>);
+
+impl std::str::FromStr for Values {
+    type Err = LabError;
+
+    fn from_str(text: &str) -> Result<Self, LabError> {
+        let mut values = Vec::new();
+        for part in text.split(',') {
+            values.extend(part.parse::<Range>()?.values());
+        }
+        values.sort_by(f64::total_cmp);
+        values.dedup();
+        Ok(Self(values))
+    }
+}
+
+/// Which scene a lab command measures.
+#[derive(Debug, Args)]
+pub(crate) struct SceneArgs {
+    /// A scene file (TOML); without it (and without --builtin), the default
+    /// scene, stiff-cloth.
+    #[arg(value_name = "SCENE")]
+    scene: Option<PathBuf>,
+    /// Measure the built-in scene NAME instead (see `hooke scenes`).
+    #[arg(long, value_name = "NAME", conflicts_with = "scene")]
+    builtin: Option<String>,
+    /// Integrators to measure, comma-separated (default: all).
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    methods: Vec<String>,
+    /// The directory to write into; created if missing.
+    #[arg(long, value_name = "DIR", default_value = "hooke-out")]
+    out: PathBuf,
+    /// Show no progress bar.
+    #[arg(long, short)]
+    quiet: bool,
+    /// Run only part I of N of the sweep (0 ≤ I < N; cells dealt in turn)
+    /// and write a partial report, for `hooke merge`.
+    #[arg(long, value_name = "I/N")]
+    shard: Option<Shard>,
+    /// Multiply every spring's stiffness by SCALE first.
+    #[arg(long = "scale-stiffness", value_name = "SCALE")]
+    scale_stiffness: Option<f64>,
+    /// The implicit methods' linear solver (default: the scene's, else
+    /// cholesky).
+    #[arg(long, value_name = "SOLVER")]
+    solver: Option<SolverArg>,
+    /// The relative residual PCG stops at, with --solver pcg.
+    #[arg(long, value_name = "TOL", default_value_t = hooke_implicit::PcgSettings::default().tolerance())]
+    pcg_tolerance: f64,
+    /// The implicit methods' cap on Newton iterations per (sub)step
+    /// (default: the scene's, else the integrator's).
+    #[arg(long, value_name = "N")]
+    newton: Option<usize>,
+    /// The implicit methods take Baraff and Witkin's linearised step (one
+    /// solve, no line search, no rejection) instead of converged ones.
+    #[arg(long)]
+    linearized: bool,
+}
+
+/// `--solver`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum SolverArg {
+    /// Sparse Cholesky.
+    Cholesky,
+    /// Block-Jacobi PCG to the relative residual --pcg-tolerance.
+    Pcg,
+}
+
+impl SceneArgs {
+    fn scene(&self) -> Result<Scene, CliError> {
+        let mut scene = load_scene(self.scene.as_deref(), self.builtin.as_deref())?;
+        if let Some(scale) = self.scale_stiffness {
+            scene.system = scene
+                .system
+                .with_stiffness_scale(scale)
+                .map_err(|source| CliError::ScaleStiffness { scale, source })?;
+        }
+        Ok(scene)
+    }
+
+    /// The lab's method settings for `scene`, with `--solver` and
+    /// `--newton` and `--linearized` applied.
+    fn settings(&self, scene: &Scene) -> hooke_lab::Settings {
+        let mut settings = hooke_lab::Settings::from_scene(&scene.integrator);
+        match self.solver {
+            Some(SolverArg::Cholesky) => settings.solver = SolverSpec::Cholesky,
+            Some(SolverArg::Pcg) => {
+                let defaults = hooke_implicit::PcgSettings::default();
+                settings.solver = SolverSpec::Pcg {
+                    tolerance: self.pcg_tolerance,
+                    max_iterations: defaults.max_iterations(),
+                };
+            }
+            None => {}
+        }
+        if let Some(n) = self.newton {
+            settings.newton_iterations = n;
+        }
+        settings.linearized |= self.linearized;
+        settings
+    }
+
+    /// The methods named, or `all` when none is.
+    fn methods(&self, all: &[Method]) -> Result<Vec<Method>, CliError> {
+        if self.methods.is_empty() {
+            return Ok(all.to_vec());
+        }
+        self.methods
+            .iter()
+            .map(|name| {
+                Method::from_name(name.trim())
+                    .ok_or_else(|| CliError::UnknownMethod { name: name.clone() })
+            })
+            .collect()
+    }
+
+    /// Runs `measure` with a progress bar of `what` (hidden with
+    /// `--quiet`) fed by its progress callback.
+    fn measure<R>(
+        &self,
+        what: &str,
+        measure: impl FnOnce(&(dyn Fn(usize, usize) + Sync)) -> Result<R, LabError>,
+    ) -> Result<R, CliError> {
+        let bar = if self.quiet {
+            ProgressBar::hidden()
+        } else {
+            ProgressBar::new(0)
+        };
+        if let Ok(style) = ProgressStyle::with_template(&format!(
+            "{{elapsed_precise}} [{{bar:40}}] {{pos}}/{{len}} {what}, eta {{eta}}"
+        )) {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        let result = measure(&|done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        });
+        bar.finish_and_clear();
+        Ok(result?)
+    }
+}

@@ -1,0 +1,318 @@
+//! [`EnergyBudget`]: the observer that decides whether a run stayed
+//! stable.
+
+use std::ops::ControlFlow;
+
+use hooke_core::{Observer, Path, State, StepInfo, System, Vec3};
+
+/// The energy test of a stability run.
+///
+/// The energy is that of the moving parts, `E = Σ_free ½ mᵢ|vᵢ|² + Σ ½ k (l − L)²`
+/// (kinetic energy of the free particles plus the springs' elastic
+/// energy), and gravity and scripted pins count as external forces doing
+/// work on it:
+///
+/// ```text
+/// W(t) = Σ_free mᵢ g·(xᵢ(t) − xᵢ(0))  +  ∫₀ᵗ −Σ_scripted vₚ·fₚ dt
+/// ```
+///
+/// where `fₚ` is the total spring force on scripted pin `p` (the integral
+/// by the trapezoidal rule over the steps). For the exact motion
+/// `E(t) = E(0) + W(t) − D(t)` with the dissipated energy `D ≥ 0` (spring
+/// and air damping, inelastic contacts with fixed obstacles), so
+///
+/// ```text
+/// E(t) ≤ E(0) + max_{s ≤ t} W(s).
+/// ```
+///
+/// The *energy ratio* at time `t` is `E(t) / (E(0) + max_{s≤t} W(s))`: at
+/// most one for the exact motion, whatever the origin of the coordinates.
+/// It is not defined while its denominator is zero (a system at rest
+/// before gravity has done any work), and those instants are skipped.
+/// Work done by moving obstacles is not counted, so on scenes with moving
+/// obstacles the ratio can exceed one physically.
+///
+/// Gravity's work is path-independent, `mᵢ g·Δxᵢ`, and is computed exactly
+/// from the positions: the budget adds no error of its own to what it
+/// measures, so on the oscillator the ratio it reports is the one the
+/// integrator's amplification factor gives, to 10⁻⁹ relative (the test
+/// `the_reported_ratio_is_the_amplification_factors_at_small_steps`).
+/// Only the pins' work, which depends on the path, is summed by the
+/// trapezoidal rule.
+///
+/// As an [`Observer`] (called after every step) it records each state and
+/// stops the run at the first ratio above its [bound](Self::with_bound) or
+/// not a number.
+#[derive(Debug, Clone)]
+pub struct EnergyBudget {
+    free: Vec<usize>,
+    masses: Vec<f64>,
+    start: Vec<Vec3>,
+    gravity: Option<Vec3>,
+    scripted: Vec<usize>,
+    initial: f64,
+    pin_work: f64,
+    pin_power: f64,
+    max_work: f64,
+    max_ratio: f64,
+    time: f64,
+    bound: f64,
+    exceeded: bool,
+}
+
+impl EnergyBudget {
+    /// The budget of `system` starting from its initial state.
+    #[must_use]
+    pub fn new(system: &System) -> Self {
+        let state = system.initial_state();
+        let free: Vec<usize> = (0..system.particle_count())
+            .filter(|&i| !system.is_pinned(i))
+            .collect();
+        let scripted = system
+            .pin_paths()
+            .iter()
+            .filter(|(_, path)| !matches!(path, Path::Fixed))
+            .map(|&(p, _)| p)
+            .collect();
+        let mut budget = Self {
+            masses: system.masses().to_vec(),
+            start: state.positions().to_vec(),
+            gravity: system.gravity(),
+            free,
+            scripted,
+            initial: 0.0,
+            pin_work: 0.0,
+            pin_power: 0.0,
+            max_work: 0.0,
+            max_ratio: 0.0,
+            time: state.time(),
+            bound: f64::INFINITY,
+            exceeded: false,
+        };
+        budget.initial = budget.energy(system, &state);
+        budget.pin_power = budget.pin_power(system, &state);
+        budget
+    }
+
+    /// The same budget stopping a run, as an [`Observer`], once the ratio
+    /// exceeds `bound`.
+    #[must_use]
+    pub fn with_bound(self, bound: f64) -> Self {
+        Self { bound, ..self }
+    }
+
+    /// Whether a ratio above the bound (or not a number) was seen.
+    #[must_use]
+    pub fn exceeded(&self) -> bool {
+        self.exceeded
+    }
+
+    /// `E` of `state`, J.
+    #[must_use]
+    pub fn energy(&self, system: &System, state: &State) -> f64 {
+        let (x, v) = (state.positions(), state.velocities());
+        let kinetic: f64 = self
+            .free
+            .iter()
+            .map(|&i| 0.5 * self.masses[i] * v[i].norm_squared())
+            .sum();
+        let elastic: f64 = system
+            .springs()
+            .iter()
+            .map(|s| s.energy(x[s.i], x[s.j]))
+            .sum();
+        kinetic + elastic
+    }
+
+    /// `E(0)`, J.
+    #[must_use]
+    pub fn initial(&self) -> f64 {
+        self.initial
+    }
+
+    fn gravity_work(&self, state: &State) -> f64 {
+        self.gravity.map_or(0.0, |g| {
+            let x = state.positions();
+            self.free
+                .iter()
+                .map(|&i| self.masses[i] * g.dot(&(x[i] - self.start[i])))
+                .sum()
+        })
+    }
+
+    /// `−Σ_scripted vₚ·fₚ`: the power the scripted pins put into the
+    /// springs.
+    fn pin_power(&self, system: &System, state: &State) -> f64 {
+        if self.scripted.is_empty() {
+            return 0.0;
+        }
+        let (x, v) = (state.positions(), state.velocities());
+        system
+            .springs()
+            .iter()
+            .map(|s| {
+                let fi = s.force(x[s.i], x[s.j], v[s.i], v[s.j]);
+                let on_i = if self.scripted.contains(&s.i) {
+                    -v[s.i].dot(&fi)
+                } else {
+                    0.0
+                };
+                let on_j = if self.scripted.contains(&s.j) {
+                    v[s.j].dot(&fi)
+                } else {
+                    0.0
+                };
+                on_i + on_j
+            })
+            .sum()
+    }
+
+    /// Records `state` (the state after the next step) and returns its
+    /// energy ratio, or `None` while the ratio is not defined.
+    pub fn record(&mut self, system: &System, state: &State) -> Option<f64> {
+        if !self.scripted.is_empty() {
+            let power = self.pin_power(system, state);
+            self.pin_work += 0.5 * (self.pin_power + power) * (state.time() - self.time);
+            self.pin_power = power;
+        }
+        self.time = state.time();
+        let work = self.gravity_work(state) + self.pin_work;
+        self.max_work = self.max_work.max(work);
+        let budget = self.initial + self.max_work;
+        let energy = self.energy(system, state);
+        let ratio = if budget > 0.0 {
+            energy / budget
+        } else if energy.is_nan() {
+            f64::NAN
+        } else {
+            return None;
+        };
+        // NaN never compares greater, so record it explicitly.
+        if ratio.is_nan() {
+            self.max_ratio = f64::INFINITY;
+        } else if ratio > self.max_ratio {
+            self.max_ratio = ratio;
+        }
+        self.exceeded |= ratio.is_nan() || ratio > self.bound;
+        Some(ratio)
+    }
+
+    /// The largest energy ratio seen so far (infinite once the energy was
+    /// not finite; zero if the ratio was never defined).
+    #[must_use]
+    pub fn max_ratio(&self) -> f64 {
+        self.max_ratio
+    }
+}
+
+impl Observer for EnergyBudget {
+    fn observe(&mut self, system: &System, state: &State, _step: &StepInfo) -> ControlFlow<()> {
+        self.record(system, state);
+        if self.exceeded {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use hooke_core::SystemBuilder;
+
+    use super::*;
+
+    /// `system`'s state with these positions and velocities at time `t`.
+    fn state_at(system: &System, x: &[Vec3], v: &[Vec3], t: f64) -> State {
+        let mut state = system.initial_state();
+        state.positions_mut().copy_from_slice(x);
+        state.velocities_mut().copy_from_slice(v);
+        state.set_time(t);
+        state
+    }
+
+    #[test]
+    fn the_exact_oscillator_has_ratio_one_until_the_work_stops_growing() {
+        // The bob released at the spring's rest length under gravity, with
+        // m = k = g = 1: u(t) = 1 − cos t below the start, E = ½v² + ½u² and
+        // W = u, so E = W exactly. After the lowest point (t = π) the
+        // budget keeps max W = 2 and the ratio is u/2.
+        let mut b = SystemBuilder::new();
+        let anchor = b.particle(1.0, [0.0, 0.0, 0.0]);
+        let bob = b.particle(1.0, [0.0, -1.0, 0.0]);
+        b.pin(anchor);
+        b.spring(anchor, bob, 1.0);
+        b.gravity([0.0, -1.0, 0.0]);
+        let system = b.build().unwrap();
+        let mut budget = EnergyBudget::new(&system);
+        assert!(budget.initial().abs() < 1e-15);
+        let mut deepest = 0.0_f64;
+        for k in 1..=60 {
+            let t = 0.1 * f64::from(k);
+            let u = 1.0 - t.cos();
+            deepest = deepest.max(u);
+            let state = state_at(
+                &system,
+                &[Vec3::zeros(), Vec3::new(0.0, -1.0 - u, 0.0)],
+                &[Vec3::zeros(), Vec3::new(0.0, -t.sin(), 0.0)],
+                t,
+            );
+            let ratio = budget.record(&system, &state).unwrap();
+            let expected = u / deepest;
+            assert!((ratio - expected).abs() < 1e-12, "t = {t}: ratio {ratio}");
+        }
+        assert!((budget.max_ratio() - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn energy_from_nowhere_is_an_undefined_ratio_then_a_large_one() {
+        // A free particle at rest without gravity: no budget at all.
+        let mut b = SystemBuilder::new();
+        b.particle(2.0, [0.0, 0.0, 0.0]);
+        let system = b.build().unwrap();
+        let mut budget = EnergyBudget::new(&system);
+        let still = system.initial_state();
+        assert_eq!(budget.record(&system, &still), None);
+        let moving = state_at(&system, &[Vec3::zeros()], &[Vec3::new(1.0, 0.0, 0.0)], 0.1);
+        assert_eq!(budget.record(&system, &moving), None);
+        let broken = state_at(
+            &system,
+            &[Vec3::zeros()],
+            &[Vec3::new(f64::NAN, 0.0, 0.0)],
+            0.2,
+        );
+        assert_eq!(budget.record(&system, &broken).map(f64::is_nan), Some(true));
+        assert!(budget.max_ratio().is_infinite());
+    }
+
+    #[test]
+    fn a_scripted_pin_stretching_a_spring_pays_for_its_energy() {
+        // A pin moving at 1 m/s drags a spring (k = 4) whose other end is
+        // pinned: the pin's work ∫ −v·f dt = ½ k s² is all elastic energy.
+        let mut b = SystemBuilder::new();
+        let fixed = b.particle(1.0, [0.0, 0.0, 0.0]);
+        let dragged = b.particle(1.0, [1.0, 0.0, 0.0]);
+        b.pin(fixed);
+        b.pin_moving(
+            dragged,
+            Path::Linear {
+                velocity: Vec3::new(1.0, 0.0, 0.0),
+            },
+        );
+        b.spring(fixed, dragged, 4.0);
+        let system = b.build().unwrap();
+        let mut budget = EnergyBudget::new(&system);
+        for k in 1..=100 {
+            let t = 0.01 * f64::from(k);
+            let state = state_at(
+                &system,
+                &[Vec3::zeros(), Vec3::new(1.0 + t, 0.0, 0.0)],
+                &[Vec3::zeros(), Vec3::new(1.0, 0.0, 0.0)],
+                t,
+            );
+            let ratio = budget.record(&system, &state).unwrap();
+            // The trapezoidal rule is exact for the linear power 4t.
+            assert!((ratio - 1.0).abs() < 1e-12, "t = {t}: ratio {ratio}");
+        }
+    }
+}

@@ -1,0 +1,155 @@
+//! [`IntegratorSpec`]: which [`Method`] a scene runs, with its parameters,
+//! and the [`SolverSpec`] of the implicit ones.
+
+use hooke_core::{Integrator, ParameterError};
+use hooke_explicit::{DormandPrince, ExplicitMethod};
+use hooke_implicit::{Implicit, LinearSolver, PcgSettings, Scheme};
+
+use crate::Method;
+
+/// The linear solver of an implicit integrator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SolverSpec {
+    /// Filtered PCG to a relative residual `tolerance`, at most
+    /// `max_iterations` iterations.
+    Pcg {
+        /// Relative residual to stop at.
+        tolerance: f64,
+        /// Iteration cap.
+        max_iterations: usize,
+    },
+    /// Sparse Cholesky.
+    Cholesky,
+}
+
+/// Which integrator a scene runs, with its parameters: a [`Method`] of
+/// the one list and what it needs to be built.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum IntegratorSpec {
+    /// A fixed-step explicit method.
+    Explicit(ExplicitMethod),
+    /// Adaptive Dormand–Prince 5(4) with relative and absolute tolerances.
+    Adaptive {
+        /// Relative tolerance.
+        rtol: f64,
+        /// Absolute tolerance.
+        atol: f64,
+    },
+    /// Backward Euler or BDF2.
+    Implicit {
+        /// The scheme.
+        scheme: Scheme,
+        /// The linear solver.
+        solver: SolverSpec,
+        /// Baraff & Witkin's linearised step instead of the converged one.
+        linearized: bool,
+        /// Cap on Newton iterations per (sub)step.
+        newton_iterations: usize,
+        /// Relative Newton tolerance `ε` (see `hooke_implicit::Implicit`).
+        newton_tolerance: f64,
+    },
+}
+
+impl IntegratorSpec {
+    /// `method` with the default parameters: Dormand–Prince at
+    /// [`DormandPrince::RTOL`] and [`DormandPrince::ATOL`], the implicit
+    /// methods as [`IntegratorSpec::implicit`].
+    ///
+    /// ```
+    /// use hooke_scenes::{IntegratorSpec, Method};
+    /// for method in Method::ALL {
+    ///     assert_eq!(IntegratorSpec::new(method).method(), method);
+    /// }
+    /// ```
+    #[must_use]
+    pub fn new(method: Method) -> Self {
+        match method {
+            Method::Explicit(explicit) => Self::Explicit(explicit),
+            Method::DormandPrince => Self::Adaptive {
+                rtol: DormandPrince::RTOL,
+                atol: DormandPrince::ATOL,
+            },
+            Method::BackwardEuler => Self::implicit(Scheme::BackwardEuler),
+            Method::Bdf2 => Self::implicit(Scheme::Bdf2),
+        }
+    }
+
+    /// The method this spec builds.
+    #[must_use]
+    pub fn method(&self) -> Method {
+        match *self {
+            Self::Explicit(explicit) => Method::Explicit(explicit),
+            Self::Adaptive { .. } => Method::DormandPrince,
+            Self::Implicit {
+                scheme: Scheme::BackwardEuler,
+                ..
+            } => Method::BackwardEuler,
+            Self::Implicit {
+                scheme: Scheme::Bdf2,
+                ..
+            } => Method::Bdf2,
+        }
+    }
+
+    /// `scheme` with sparse Cholesky and converged Newton steps at the
+    /// integrator's default cap and tolerance
+    /// ([`Implicit::NEWTON_ITERATIONS`], [`Implicit::NEWTON_TOLERANCE`]).
+    #[must_use]
+    pub fn implicit(scheme: Scheme) -> Self {
+        Self::Implicit {
+            scheme,
+            solver: SolverSpec::Cholesky,
+            linearized: false,
+            newton_iterations: Implicit::NEWTON_ITERATIONS,
+            newton_tolerance: Implicit::NEWTON_TOLERANCE,
+        }
+    }
+
+    /// Backward Euler with sparse Cholesky and converged Newton steps at
+    /// the integrator's default cap and tolerance: the default of scenes.
+    #[must_use]
+    pub fn backward_euler() -> Self {
+        Self::implicit(Scheme::BackwardEuler)
+    }
+
+    /// A new integrator with these parameters.
+    ///
+    /// ```
+    /// use hooke_scenes::IntegratorSpec;
+    /// let integrator = IntegratorSpec::backward_euler().build()?;
+    /// assert_eq!(integrator.name(), "backward-euler");
+    /// # Ok::<(), hooke_core::ParameterError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ParameterError`] naming the parameter that is out of range.
+    pub fn build(&self) -> Result<Box<dyn Integrator + Send>, ParameterError> {
+        Ok(match *self {
+            Self::Explicit(explicit) => explicit.build(),
+            Self::Adaptive { rtol, atol } => Box::new(DormandPrince::new(rtol, atol)?),
+            Self::Implicit {
+                scheme,
+                solver,
+                linearized,
+                newton_iterations,
+                newton_tolerance,
+            } => {
+                let solver = match solver {
+                    SolverSpec::Pcg {
+                        tolerance,
+                        max_iterations,
+                    } => LinearSolver::Pcg(PcgSettings::new(tolerance, max_iterations)?),
+                    SolverSpec::Cholesky => LinearSolver::Cholesky,
+                };
+                let implicit = Implicit::new(scheme)
+                    .with_solver(solver)
+                    .with_newton(newton_iterations, newton_tolerance)?;
+                Box::new(if linearized {
+                    implicit.linearized()
+                } else {
+                    implicit
+                })
+            }
+        })
+    }
+}

@@ -1,0 +1,137 @@
+//! What a picture needs of an obstacle's [`Shape`] beyond the model: the
+//! box that holds it and a check that it can be drawn.
+
+use hooke_core::{Shape, Vec3};
+
+use crate::bounds::Bounds;
+use crate::error::OutputError;
+
+/// The box holding `shape`, or `None` for a plane.
+///
+/// ```
+/// use hooke_core::{Shape, Vec3};
+/// let ball = Shape::Sphere { center: Vec3::zeros(), radius: 2.0 };
+/// let bounds = hooke_viz::shape_bounds(&ball).expect("a ball is finite");
+/// assert_eq!(bounds.max(), Vec3::repeat(2.0));
+/// ```
+#[must_use]
+pub fn shape_bounds(shape: &Shape) -> Option<Bounds> {
+    match *shape {
+        Shape::Sphere { center, radius } => {
+            let r = Vec3::repeat(radius);
+            Some(Bounds::new(center - r, center + r))
+        }
+        Shape::Plane { .. } => None,
+        Shape::Box {
+            center,
+            half_extents,
+            rotation,
+        } => {
+            let reach = rotation.abs() * half_extents;
+            Some(Bounds::new(center - reach, center + reach))
+        }
+        Shape::Capsule { a, b, radius } => {
+            let r = Vec3::repeat(radius);
+            Some(Bounds::new(a - r, a + r).union(Bounds::new(b - r, b + r)))
+        }
+    }
+}
+
+/// Checks that `shape` can be drawn; `index` is its place in the obstacle
+/// list, for the error.
+///
+/// # Errors
+///
+/// [`OutputError::InvalidShape`] for non-finite data, a radius or half
+/// extent that is not positive, or a zero plane normal.
+pub fn check_shape(shape: &Shape, index: usize) -> Result<(), OutputError> {
+    let fail = |reason| Err(OutputError::InvalidShape { index, reason });
+    let finite = |v: &Vec3| v.iter().all(|c| c.is_finite());
+    let positive = |r: f64| r.is_finite() && r > 0.0;
+    match shape {
+        Shape::Sphere { center, radius } => {
+            if !finite(center) {
+                return fail("sphere centre is not finite");
+            }
+            if !positive(*radius) {
+                return fail("sphere radius must be positive and finite");
+            }
+        }
+        Shape::Plane { point, normal } => {
+            if !finite(point) || !finite(normal) {
+                return fail("plane point or normal is not finite");
+            }
+            if normal.norm() <= f64::MIN_POSITIVE {
+                return fail("plane normal is zero");
+            }
+        }
+        Shape::Box {
+            center,
+            half_extents,
+            rotation,
+        } => {
+            if !finite(center) || !rotation.iter().all(|c| c.is_finite()) {
+                return fail("box centre or rotation is not finite");
+            }
+            if !half_extents.iter().all(|&h| positive(h)) {
+                return fail("box half extents must be positive and finite");
+            }
+        }
+        Shape::Capsule { a, b, radius } => {
+            if !finite(a) || !finite(b) {
+                return fail("capsule axis is not finite");
+            }
+            if !positive(*radius) {
+                return fail("capsule radius must be positive and finite");
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+    use nalgebra::Rotation3;
+
+    use super::*;
+
+    #[test]
+    fn rotated_box_bounds_cover_its_corners() {
+        let rotation = Rotation3::from_axis_angle(&Vec3::z_axis(), std::f64::consts::FRAC_PI_4);
+        let b = shape_bounds(&Shape::Box {
+            center: Vec3::zeros(),
+            half_extents: Vec3::new(1.0, 1.0, 0.5),
+            rotation: rotation.into_inner(),
+        })
+        .unwrap();
+        assert_relative_eq!(
+            b.max(),
+            Vec3::new(2f64.sqrt(), 2f64.sqrt(), 0.5),
+            epsilon = 1e-12
+        );
+    }
+
+    #[test]
+    fn invalid_shapes_name_their_index() {
+        let bad = Shape::Capsule {
+            a: Vec3::zeros(),
+            b: Vec3::x(),
+            radius: -1.0,
+        };
+        assert!(matches!(
+            check_shape(&bad, 4),
+            Err(OutputError::InvalidShape { index: 4, .. })
+        ));
+        let flat = Shape::Plane {
+            point: Vec3::zeros(),
+            normal: Vec3::zeros(),
+        };
+        assert!(check_shape(&flat, 0).is_err());
+        let ball = Shape::Sphere {
+            center: Vec3::zeros(),
+            radius: 1.0,
+        };
+        assert!(check_shape(&ball, 0).is_ok());
+    }
+}
