@@ -97,9 +97,9 @@ pub enum Scheme {
 /// oscillator a correct step can gain a little energy; their gains are
 /// reported in [`StepReport::energy_excess`](hooke_core::StepReport::energy_excess).
 /// At the floor, a step is accepted as it is and counted in
-/// [`StepReport::unconverged_steps`](hooke_core::StepReport::unconverged_steps)(hooke_core::StepReport::unconverged_steps)
+/// [`StepReport::unconverged_steps`](hooke_core::StepReport::unconverged_steps)
 /// (or, in [strict](Implicit::strict) mode, fails with
-/// [`StepError::NoConvergence`](hooke_core::StepError::NoConvergence)(hooke_core::StepError::NoConvergence)); if a
+/// [`StepError::NoConvergence`](hooke_core::StepError::NoConvergence)); if a
 /// backward-Euler step gained energy there, the last resort scales the free
 /// particles' velocities so that the kinetic energy absorbs the excess,
 /// counted in [`StepReport::energy_corrections`](hooke_core::StepReport::energy_corrections)
