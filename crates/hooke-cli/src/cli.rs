@@ -212,8 +212,13 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
     };
     writeln!(
         out,
-        "{}: {} steps to t = {:.3} s in {:.2} s wall, {:.3} ms per step (median){solver}",
-        summary.integrator, summary.steps, summary.time, summary.wall_s, summary.step_ms_median
+        "{}: {} steps to t = {:.3} s, {:.3} ms per step (median){solver}",
+        summary.integrator, summary.steps, summary.time, summary.step_ms_median
+    )?;
+    writeln!(
+        out,
+        "wall {:.2} s: simulation {:.2} s, frames and pictures {:.2} s",
+        summary.wall_s, summary.simulation_s, summary.output_s
     )?;
     writeln!(
         out,
@@ -229,7 +234,13 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
     }
     let dir = summary.out.display();
     writeln!(out, "wrote {} frames: {dir}/frame_*.ply", summary.frames)?;
-    writeln!(out, "picture: {dir}/{PREVIEW_FILE}")?;
+    match (summary.preview_frame, summary.preview_time) {
+        (Some(frame), Some(time)) => writeln!(
+            out,
+            "picture: {dir}/{PREVIEW_FILE} (frame {frame}, t = {time:.3} s)"
+        )?,
+        _ => writeln!(out, "picture: none, no frame was written")?,
+    }
     if gif {
         writeln!(out, "animation: {dir}/{ANIMATION_FILE}")?;
     }
