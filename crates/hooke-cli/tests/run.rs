@@ -482,3 +482,23 @@ fn the_output_time_is_measured_apart_from_the_simulation() {
     assert!(summary.simulation_s > 0.0 && summary.output_s > 0.0);
     assert!(summary.simulation_s + summary.output_s <= summary.wall_s);
 }
+
+#[test]
+fn the_default_scene_lands_and_drapes_without_gaining_energy_or_overstretching() {
+    // Its first second and a half: the fall, the landing and the drape
+    // (the whole run is the main job, `cargo run --release`).
+    let mut scene = hooke_scenes::builtin::load(hooke_cli::DEFAULT_SCENE).unwrap();
+    scene.timing.duration = 1.5;
+    let dir = tempfile::tempdir().unwrap();
+    let summary = run(&scene, &RunOptions::new(dir.path()).gif(false), &mut ()).unwrap();
+    assert_eq!(summary.steps, 90);
+    assert!(summary.warnings.is_empty(), "{:?}", summary.warnings);
+    assert!(
+        summary.contacts_max > 100,
+        "it lands on the sphere and the floor"
+    );
+    assert!(summary.energy_gain <= 0.0, "{}", summary.energy_gain);
+    assert!(summary.energy_max <= summary.energy_initial);
+    assert!(summary.energy_final < 0.6 * summary.energy_initial);
+    assert!(summary.max_strain <= 0.25, "{}", summary.max_strain);
+}
