@@ -8,7 +8,7 @@ use std::path::Path;
 use hooke_cli::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, Summary, run};
 use hooke_core::{ObserveFn, Obstacle, Shape, State, StepInfo, System, SystemBuilder, Vec3};
 use hooke_scenes::{
-    Cloth, Corner, ExplicitMethod, IntegratorSpec, Rope, Scene, SceneBody, Springs, Timing,
+    Body, Cloth, Corner, ExplicitMethod, IntegratorSpec, Rope, Scene, SceneBody, Springs, Timing,
 };
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, Property};
@@ -42,23 +42,27 @@ fn cloth_on_sphere(duration: f64) -> Scene {
         .offset([-0.5, 0.4, -0.5])
         .build()
         .unwrap();
+    let sphere = Obstacle::new(Shape::Sphere {
+        center: Vec3::zeros(),
+        radius: 0.3,
+    });
+    cloth_scene("cloth on sphere", &cloth, sphere.friction(0.3), duration)
+}
+
+/// `cloth` above `obstacle` under gravity, with backward Euler at 1/60 s
+/// and 30 frames a second.
+fn cloth_scene(name: &str, cloth: &Body, obstacle: Obstacle, duration: f64) -> Scene {
     let mut builder = SystemBuilder::new();
     let placement = cloth.add_to(&mut builder);
     builder.gravity([0.0, -9.81, 0.0]);
-    builder.obstacle(
-        Obstacle::new(Shape::Sphere {
-            center: Vec3::zeros(),
-            radius: 0.3,
-        })
-        .friction(0.3),
-    );
+    builder.obstacle(obstacle);
     Scene {
-        name: "cloth on sphere".into(),
+        name: name.into(),
         system: builder.build().unwrap(),
         bodies: vec![SceneBody {
             name: "cloth".into(),
             placement,
-            triangles: placement.triangles(&cloth),
+            triangles: placement.triangles(cloth),
             segments: Vec::new(),
         }],
         integrator: IntegratorSpec::backward_euler(),
@@ -380,29 +384,11 @@ fn cloth_sliding_off() -> Scene {
         .offset([-0.05, 0.35, -0.3])
         .build()
         .unwrap();
-    let mut builder = SystemBuilder::new();
-    let placement = cloth.add_to(&mut builder);
-    builder.gravity([0.0, -9.81, 0.0]);
-    builder.obstacle(Obstacle::new(Shape::Sphere {
+    let sphere = Obstacle::new(Shape::Sphere {
         center: Vec3::zeros(),
         radius: 0.3,
-    }));
-    Scene {
-        name: "cloth sliding off".into(),
-        system: builder.build().unwrap(),
-        bodies: vec![SceneBody {
-            name: "cloth".into(),
-            placement,
-            triangles: placement.triangles(&cloth),
-            segments: Vec::new(),
-        }],
-        integrator: IntegratorSpec::backward_euler(),
-        timing: Timing {
-            duration: 1.5,
-            dt: 1.0 / 60.0,
-            frame_rate: 30.0,
-        },
-    }
+    });
+    cloth_scene("cloth sliding off", &cloth, sphere, 1.5)
 }
 
 /// The positions of frame `index` in `dir`, read by the independent parser.
