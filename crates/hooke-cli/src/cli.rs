@@ -203,11 +203,14 @@ fn run_scene(args: &RunArgs) -> Result<Scene, CliError> {
 
 /// Prints what a run did and where its files are.
 fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<()> {
+    // A direct solver takes no linear iterations: they are named only
+    // when an iterative one took some.
+    let newton = summary.newton_iterations_mean.unwrap_or(0.0);
     let solver = match summary.linear_iterations_mean {
-        Some(iterations) => format!(
-            ", {:.1} Newton and {iterations:.1} linear iterations per step",
-            summary.newton_iterations_mean.unwrap_or(0.0)
-        ),
+        Some(iterations) if iterations > 0.0 => {
+            format!(", {newton:.1} Newton and {iterations:.1} linear iterations per step")
+        }
+        Some(_) => format!(", {newton:.1} Newton iterations per step"),
         None => String::new(),
     };
     writeln!(

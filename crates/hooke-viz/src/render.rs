@@ -207,7 +207,7 @@ impl Renderer {
     }
 
     /// Projects `p` onto the canvas, or `None` if it is behind the eye.
-    pub(crate) fn vertex(&self, p: Vec3) -> Option<Vertex> {
+    fn vertex(&self, p: Vec3) -> Option<Vertex> {
         let q = self.camera.project(p)?;
         Some(Vertex {
             x: q.x * SUPERSAMPLE as f64,
