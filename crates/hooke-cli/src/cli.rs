@@ -238,14 +238,16 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
     let dir = summary.out.display();
     writeln!(out, "wrote {} frames: {dir}/frame_*.ply", summary.frames)?;
     match (summary.preview_frame, summary.preview_time) {
-        (Some(frame), Some(time)) => writeln!(
-            out,
-            "picture: {dir}/{PREVIEW_FILE} (frame {frame}, t = {time:.3} s)"
-        )?,
-        _ => writeln!(out, "picture: none, no frame was written")?,
-    }
-    if gif {
-        writeln!(out, "animation: {dir}/{ANIMATION_FILE}")?;
+        (Some(frame), Some(time)) => {
+            writeln!(
+                out,
+                "picture: {dir}/{PREVIEW_FILE} (frame {frame}, t = {time:.3} s)"
+            )?;
+            if gif {
+                writeln!(out, "animation: {dir}/{ANIMATION_FILE}")?;
+            }
+        }
+        _ => writeln!(out, "pictures: none, no frame was written")?,
     }
     writeln!(out, "summary: {dir}/{SUMMARY_FILE}")
 }
