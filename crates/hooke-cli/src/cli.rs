@@ -203,17 +203,25 @@ fn run_scene(args: &RunArgs) -> Result<Scene, CliError> {
 
 /// Prints what a run did and where its files are.
 fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<()> {
+    // A direct solver takes no linear iterations: they are named only
+    // when an iterative one took some.
+    let newton = summary.newton_iterations_mean.unwrap_or(0.0);
     let solver = match summary.linear_iterations_mean {
-        Some(iterations) => format!(
-            ", {:.1} Newton and {iterations:.1} linear iterations per step",
-            summary.newton_iterations_mean.unwrap_or(0.0)
-        ),
+        Some(iterations) if iterations > 0.0 => {
+            format!(", {newton:.1} Newton and {iterations:.1} linear iterations per step")
+        }
+        Some(_) => format!(", {newton:.1} Newton iterations per step"),
         None => String::new(),
     };
     writeln!(
         out,
-        "{}: {} steps to t = {:.3} s in {:.2} s wall, {:.3} ms per step (median){solver}",
-        summary.integrator, summary.steps, summary.time, summary.wall_s, summary.step_ms_median
+        "{}: {} steps to t = {:.3} s, {:.3} ms per step (median){solver}",
+        summary.integrator, summary.steps, summary.time, summary.step_ms_median
+    )?;
+    writeln!(
+        out,
+        "wall {:.2} s: simulation {:.2} s, frames and pictures {:.2} s",
+        summary.wall_s, summary.simulation_s, summary.output_s
     )?;
     writeln!(
         out,
@@ -229,9 +237,17 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
     }
     let dir = summary.out.display();
     writeln!(out, "wrote {} frames: {dir}/frame_*.ply", summary.frames)?;
-    writeln!(out, "picture: {dir}/{PREVIEW_FILE}")?;
-    if gif {
-        writeln!(out, "animation: {dir}/{ANIMATION_FILE}")?;
+    match (summary.preview_frame, summary.preview_time) {
+        (Some(frame), Some(time)) => {
+            writeln!(
+                out,
+                "picture: {dir}/{PREVIEW_FILE} (frame {frame}, t = {time:.3} s)"
+            )?;
+            if gif {
+                writeln!(out, "animation: {dir}/{ANIMATION_FILE}")?;
+            }
+        }
+        _ => writeln!(out, "pictures: none, no frame was written")?,
     }
     writeln!(out, "summary: {dir}/{SUMMARY_FILE}")
 }

@@ -1,153 +1,109 @@
-//! [`FrameWriter`]: the observer that writes a run's PLY frames, its
-//! animation and, at the end, its preview.
+//! [`FrameWriter`]: the observer that writes a run's PLY frames as it goes
+//! and notes, for each, what the choice of the preview needs.
 
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
-use hooke_core::{Observer, Run, State, StepInfo, System, Vec3};
+use hooke_core::{Observer, Run, State, StepInfo, System};
+use hooke_viz::{Bounds, Mesh, OutputError, write_frame};
 
-use hooke_viz::{
-    AnimationWriter, Bounds, Camera, MAX_GIF_FRAMES, Mesh, OutputError, Renderer, View,
-    obstacles_at, save_png, write_frame,
-};
-
-use crate::runner::{ANIMATION_FILE, PREVIEW_FILE};
-
-/// The animation being written and the renderer of its pictures.
-struct Animation {
-    writer: AnimationWriter,
-    renderer: Renderer,
-    /// Every how many written frames one is pictured.
-    stride: usize,
-}
-
-impl Animation {
-    /// An animation of about `frames` frames at `frame_rate` per simulated
-    /// second, subsampled here (rather than in the writer) so that frames
-    /// left out are not rendered at all.
-    fn new(
-        dir: &Path,
-        bounds: &Bounds,
-        (width, height): (u32, u32),
-        frame_rate: f64,
-        frames: usize,
-    ) -> Result<Self, OutputError> {
-        let stride = frames.div_ceil(MAX_GIF_FRAMES).max(1);
-        let camera = Camera::new(bounds, width, height, &View::default())?;
-        let writer = AnimationWriter::new(
-            &dir.join(ANIMATION_FILE),
-            width,
-            height,
-            frame_rate / stride as f64,
-            frames.div_ceil(stride),
-        )?;
-        Ok(Self {
-            writer,
-            renderer: Renderer::new(camera),
-            stride,
-        })
-    }
+/// What the runner knows of a written frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct FrameInfo {
+    /// Simulated time, s.
+    pub time: f64,
+    /// Kinetic energy, J.
+    pub kinetic: f64,
+    /// Particles within the contact distance of an obstacle.
+    pub contacts: usize,
+    /// The box around the particles as the frame file holds them (in
+    /// single precision), `None` for a system without any.
+    pub bounds: Option<Bounds>,
 }
 
 /// Writes the state at the start, after every observed step and at the end
-/// (if the last step was not observed) as `frame_NNNNN.ply`, pictures every
-/// `stride`-th frame into the animation, and renders the last frame
-/// written into the preview when the run ends. A state beyond what a frame
-/// file holds (see [`beyond_frame_range`]) is not written. The first error
-/// stops the run and is kept for [`FrameWriter::into_result`].
+/// (if the last step was not observed) as `frame_NNNNN.ply`, with a
+/// [`FrameInfo`] each. A state beyond what a frame file holds (see
+/// [`beyond_frame_range`]) is not written. The first error stops the run
+/// and is kept for [`FrameWriter::into_result`].
 pub(crate) struct FrameWriter {
     dir: PathBuf,
     mesh: Mesh,
-    bounds: Bounds,
-    preview_size: (u32, u32),
-    animation: Option<Animation>,
-    frames: usize,
-    /// Positions and time of the last written frame.
-    last_positions: Vec<Vec3>,
-    last_time: f64,
+    /// A particle this close to an obstacle's surface (or inside it) is in
+    /// contact, m.
+    contact_distance: f64,
+    frames: Vec<FrameInfo>,
+    /// Wall time spent writing.
+    wall: Duration,
     error: Option<OutputError>,
 }
 
 impl FrameWriter {
-    /// A writer into `dir` of a run of about `frames` frames at
-    /// `frame_rate`, with an animation of `gif_size` if asked for.
-    pub(crate) fn new(
-        dir: &Path,
-        mesh: Mesh,
-        bounds: Bounds,
-        preview_size: (u32, u32),
-        gif: Option<((u32, u32), f64, usize)>,
-    ) -> Result<Self, OutputError> {
-        let animation = gif
-            .map(|(size, frame_rate, frames)| {
-                Animation::new(dir, &bounds, size, frame_rate, frames)
-            })
-            .transpose()?;
-        Ok(Self {
+    /// A writer into `dir` of frames of `mesh`, counting particles within
+    /// `contact_distance` of an obstacle as in contact.
+    pub(crate) fn new(dir: &Path, mesh: Mesh, contact_distance: f64) -> Self {
+        Self {
             dir: dir.to_path_buf(),
             mesh,
-            bounds,
-            preview_size,
-            animation,
-            frames: 0,
-            last_positions: Vec::new(),
-            last_time: 0.0,
+            contact_distance,
+            frames: Vec::new(),
+            wall: Duration::ZERO,
             error: None,
-        })
+        }
     }
 
-    /// The frames written, or the first error.
-    pub(crate) fn into_result(self) -> Result<usize, OutputError> {
-        self.error.map_or(Ok(self.frames), Err)
+    /// The mesh, what was learnt of each frame written and the wall time
+    /// spent writing them, or the first error.
+    pub(crate) fn into_result(self) -> Result<(Mesh, Vec<FrameInfo>, Duration), OutputError> {
+        match self.error {
+            Some(error) => Err(error),
+            None => Ok((self.mesh, self.frames, self.wall)),
+        }
     }
 
     fn frame(&mut self, system: &System, state: &State) -> Result<(), OutputError> {
         let positions = state.positions();
-        write_frame(&self.dir, self.frames, &self.mesh, positions)?;
-        if let Some(animation) = &mut self.animation {
-            if self.frames % animation.stride == 0 {
-                let obstacles = obstacles_at(system, state.time());
-                let picture = animation
-                    .renderer
-                    .render(&self.mesh, positions, &obstacles)?;
-                animation.writer.push(&picture)?;
-            }
-        }
-        self.frames += 1;
-        self.last_positions.clear();
-        self.last_positions.extend_from_slice(positions);
-        self.last_time = state.time();
+        write_frame(&self.dir, self.frames.len(), &self.mesh, positions)?;
+        let t = state.time();
+        let contacts = positions
+            .iter()
+            .filter(|&&x| {
+                system
+                    .obstacles()
+                    .iter()
+                    .any(|o| o.distance(x, t).0 <= self.contact_distance)
+            })
+            .count();
+        self.frames.push(FrameInfo {
+            time: t,
+            kinetic: system.energy(state).map_or(f64::NAN, |e| e.kinetic),
+            contacts,
+            bounds: positions
+                .iter()
+                .map(|p| {
+                    let stored = p.map(|c| f64::from(c as f32));
+                    Bounds::new(stored, stored)
+                })
+                .reduce(Bounds::union),
+        });
         Ok(())
     }
 
     /// Writes `state` unless it is beyond range or the writer has failed.
     fn try_frame(&mut self, system: &System, state: &State) -> ControlFlow<()> {
+        let started = Instant::now();
         if self.error.is_none() && beyond_frame_range(state).is_none() {
             if let Err(error) = self.frame(system, state) {
                 self.error = Some(error);
             }
         }
+        self.wall += started.elapsed();
         if self.error.is_some() {
             ControlFlow::Break(())
         } else {
             ControlFlow::Continue(())
         }
-    }
-
-    /// The last frame, the preview and the end of the animation.
-    fn close(&mut self, system: &System) -> Result<(), OutputError> {
-        let (width, height) = self.preview_size;
-        let camera = Camera::new(&self.bounds, width, height, &View::default())?;
-        let picture = Renderer::new(camera).render(
-            &self.mesh,
-            &self.last_positions,
-            &obstacles_at(system, self.last_time),
-        )?;
-        save_png(&picture, &self.dir.join(PREVIEW_FILE))?;
-        if let Some(animation) = self.animation.take() {
-            animation.writer.finish()?;
-        }
-        Ok(())
     }
 }
 
@@ -161,11 +117,9 @@ impl Observer for FrameWriter {
     }
 
     fn finish(&mut self, system: &System, state: &State, _run: &Run) {
-        if self.last_time.to_bits() != state.time().to_bits() {
+        let last = self.frames.last().map(|f| f.time.to_bits());
+        if last != Some(state.time().to_bits()) {
             let _ = self.try_frame(system, state);
-        }
-        if self.error.is_none() {
-            self.error = self.close(system).err();
         }
     }
 }

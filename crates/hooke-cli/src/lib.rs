@@ -8,7 +8,7 @@
 //! | file | format |
 //! | --- | --- |
 //! | `frame_00000.ply`, `frame_00001.ply`, ... | binary little-endian PLY, one file per written frame (see `hooke-viz`) |
-//! | `preview.png` | an RGBA PNG picture of the last frame |
+//! | `preview.png` | an RGBA PNG picture of the frame where the bodies rest on the obstacles |
 //! | `animation.gif` | a looping GIF of the rendered frames |
 //! | `summary.json` | the [`Summary`]: what ran, how long each step took, solver work, energy, strain, whether the state stayed finite |
 //!
@@ -65,6 +65,7 @@ mod cli_error;
 mod describe;
 mod frames;
 mod lab;
+mod pictures;
 mod runner;
 mod step_record;
 mod summary;

@@ -4,23 +4,25 @@
 
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use hooke_core::{
-    EnergyLog, Observer, Simulation, State, StepError, StepReport, StrainLog, System, Vec3,
+    EnergyLog, Observer, Simulation, State, StepError, StepReport, StrainLog, System,
 };
 use hooke_lab::EnergyBudget;
 use hooke_scenes::{IntegratorSpec, Scene, Timing};
-use hooke_viz::{Bounds, run_bounds, scene_mesh};
+use hooke_viz::{run_bounds, scene_mesh};
 
 use crate::cli_error::CliError;
 use crate::frames::FrameWriter;
+use crate::pictures::write_pictures;
 use crate::step_record::StepRecord;
 use crate::summary::{Summary, median};
 
 /// The file name of the run summary in the output directory.
 pub const SUMMARY_FILE: &str = "summary.json";
-/// The file name of the picture of the last frame.
+/// The file name of the picture of the frame that shows the drape (see
+/// [`run`]).
 pub const PREVIEW_FILE: &str = "preview.png";
 /// The file name of the animation of the frames.
 pub const ANIMATION_FILE: &str = "animation.gif";
@@ -73,23 +75,35 @@ impl RunOptions {
 /// - `frame_00000.ply`, ...: the state before the first step and after
 ///   every [`Timing::steps_per_frame`]-th step, and the last state if it
 ///   does not fall on a frame (frames an earlier run left in the directory
-///   are removed first);
-/// - [`ANIMATION_FILE`]: the frames rendered with a camera fixed before the
-///   run from [`run_bounds`], subsampled to at most
-///   [`MAX_GIF_FRAMES`](hooke_viz::MAX_GIF_FRAMES) pictures that play in about
-///   real time;
-/// - [`PREVIEW_FILE`]: the last state, rendered larger;
+///   are removed first), written as the run goes;
+/// - [`PREVIEW_FILE`]: the frame that shows the bodies resting on the
+///   obstacles — of the frames with at least half the run's most
+///   particle–obstacle contacts, the one with the least kinetic energy
+///   (without contacts, the last frame) — recorded in
+///   [`Summary::preview_frame`];
+/// - [`ANIMATION_FILE`]: the frames subsampled to at most
+///   [`MAX_GIF_FRAMES`](hooke_viz::MAX_GIF_FRAMES) pictures that play in
+///   about real time;
 /// - [`SUMMARY_FILE`]: the [`Summary`], which is also returned.
+///
+/// Both pictures are drawn after the run, from the frame files, by one
+/// camera framing the bodies at the preview frame with the obstacles (for
+/// a run without contacts, every frame's bodies), so the animation shows
+/// the bodies falling into the place where they come to rest. A particle
+/// is in contact when it lies within 0.2 % of the scene's size (the radius
+/// of [`run_bounds`]) of an obstacle's surface.
 ///
 /// The run is a [`Simulation`] with observers: the frame writer, a record
 /// of every step's wall time and contacts, an [`EnergyLog`] and a
 /// [`StrainLog`] sampled at the written frames, and `progress`, the
-/// caller's (a progress bar), called after every step.
+/// caller's (a progress bar), called after every step. The wall time spent
+/// writing frames and pictures is [`Summary::output_s`].
 ///
 /// A step that fails (a non-finite state, a solver failure) or leaves a
 /// position beyond what a frame file holds (`|x| > f32::MAX`: the run has
 /// diverged) ends the run without an error: the last state that can be
-/// written is the final frame and the preview, and the summary records the
+/// written is the final frame, the pictures are drawn from the frames
+/// written, and the summary records the
 /// failure in [`Summary::error`] (and, for a state that went non-finite or
 /// diverged, `finite: false`).
 ///
@@ -114,12 +128,8 @@ pub fn run(
     let timing = scene.timing;
     let steps = timing.steps();
     let every = timing.steps_per_frame();
-    let bounds = run_bounds(system, timing.duration)
-        .unwrap_or_else(|| Bounds::new(Vec3::zeros(), Vec3::zeros()));
-    let gif = options
-        .gif
-        .then_some((options.gif_size, timing.frame_rate, steps / every + 1));
-    let mut frames = FrameWriter::new(&options.out, mesh, bounds, options.preview_size, gif)?;
+    let size = run_bounds(system, timing.duration).map_or(0.0, |b| b.radius());
+    let mut frames = FrameWriter::new(&options.out, mesh, CONTACT_DISTANCE * size);
     let mut record = StepRecord::default();
     let (mut energy, mut strain) = (EnergyLog::default(), StrainLog::default());
     let mut budget = EnergyBudget::new(system);
@@ -132,7 +142,16 @@ pub fn run(
         .observe(every, &mut strain)
         .observe(1, progress)
         .run_to_end(&mut state, timing.dt, steps);
-    let frame_count = frames.into_result()?;
+    let (mesh, frames, frames_wall) = frames.into_result()?;
+    let pictures = write_pictures(
+        &options.out,
+        &mesh,
+        system,
+        &frames,
+        timing.frame_rate,
+        options,
+    )?;
+    let output = frames_wall + pictures.map_or(Duration::ZERO, |p| p.wall);
 
     let failure = match (run.failure(), record.diverged.take()) {
         (Some(error), _) => Some((
@@ -159,10 +178,14 @@ pub fn run(
         steps: taken,
         steps_planned: steps,
         time: state.time(),
-        frames: frame_count,
+        frames: frames.len(),
+        preview_frame: pictures.map(|p| p.preview),
+        preview_time: pictures.map(|p| p.preview_time),
         particles: system.particle_count(),
         springs: system.springs().len(),
         wall_s: started.elapsed().as_secs_f64(),
+        simulation_s: record.step_ms.iter().sum::<f64>() * 1e-3,
+        output_s: output.as_secs_f64(),
         step_ms_median: median(&record.step_ms),
         step_ms_max: record.step_ms.iter().copied().fold(0.0, f64::max),
         linear_iterations_mean: per_step(total.linear_iterations),
@@ -194,6 +217,10 @@ pub fn run(
     write_json(&options.out.join(SUMMARY_FILE), &summary)?;
     Ok(summary)
 }
+
+/// The distance from an obstacle within which a particle counts as in
+/// contact, as a fraction of the radius of the scene's [`run_bounds`].
+const CONTACT_DISTANCE: f64 = 2e-3;
 
 /// The largest energy gain, relative to `E(0) + max W`, that a run may
 /// show without a warning: rounding, and the implicit methods' own energy

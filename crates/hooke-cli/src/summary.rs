@@ -29,12 +29,22 @@ pub struct Summary {
     pub time: f64,
     /// PLY frames written.
     pub frames: usize,
+    /// The frame `preview.png` shows (from 0): the bodies resting on the
+    /// obstacles (see [`run`](crate::run)); `None` if no frame was written.
+    pub preview_frame: Option<usize>,
+    /// The simulated time of that frame, s.
+    pub preview_time: Option<f64>,
     /// Particles in the system.
     pub particles: usize,
     /// Springs in the system.
     pub springs: usize,
     /// Wall time of the whole run, output included, s.
     pub wall_s: f64,
+    /// Wall time spent inside the integrator's steps, s.
+    pub simulation_s: f64,
+    /// Wall time spent writing the frames, the preview and the animation,
+    /// s.
+    pub output_s: f64,
     /// Median wall time of one step, ms.
     pub step_ms_median: f64,
     /// Longest wall time of one step, ms.

@@ -128,12 +128,34 @@ fn run_writes_frames_and_summary_of_a_scene_file() {
         "--quiet",
     ]);
     assert_eq!(code, ExitCode::SUCCESS, "{err}");
-    assert!(stdout.contains("preview.png"), "{stdout}");
     let summary = read_summary(&out);
     assert_eq!(
         (summary.scene.as_str(), summary.steps),
         ("small backward-euler", 6)
     );
+    // The report: steps and their cost, where the time went, energy in and
+    // out, strain, and which frame the picture shows.
+    let line = |start: &str| {
+        stdout
+            .lines()
+            .find(|l| l.starts_with(start))
+            .unwrap_or_else(|| panic!("no line {start:?} in {stdout}"))
+    };
+    let steps = line("backward-euler: 6 steps to t = 0.100 s, ");
+    assert!(steps.contains("ms per step (median)"), "{steps}");
+    assert!(steps.ends_with("Newton iterations per step"), "{steps}");
+    assert!(line("wall ").contains(" s: simulation "), "{stdout}");
+    assert!(line("energy ").contains(" J -> "), "{stdout}");
+    assert!(line("energy ").contains("max strain"), "{stdout}");
+    let frame = summary.preview_frame.unwrap();
+    assert!(
+        line("picture: ").ends_with(&format!(
+            "preview.png (frame {frame}, t = {:.3} s)",
+            summary.preview_time.unwrap()
+        )),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("warning:"), "{stdout}");
     assert!(summary.finite && summary.error.is_none());
     assert_eq!(summary.frames, 4);
     for frame in 0..summary.frames {

@@ -16,7 +16,8 @@ fn check_of_the_default_scene_succeeds() {
     let output = hooke(&["check", scene]);
     assert!(output.status.success());
     let text = String::from_utf8(output.stdout).unwrap();
-    assert!(text.contains("particles   1600 (2 pinned)"), "{text}");
+    assert!(text.contains("particles   1600 (0 pinned)"), "{text}");
+    assert!(text.contains("obstacles   2"), "{text}");
 }
 
 #[test]

@@ -8,7 +8,7 @@ use std::path::Path;
 use hooke_cli::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, Summary, run};
 use hooke_core::{ObserveFn, Obstacle, Shape, State, StepInfo, System, SystemBuilder, Vec3};
 use hooke_scenes::{
-    Cloth, Corner, ExplicitMethod, IntegratorSpec, Rope, Scene, SceneBody, Springs, Timing,
+    Body, Cloth, Corner, ExplicitMethod, IntegratorSpec, Rope, Scene, SceneBody, Springs, Timing,
 };
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, Property};
@@ -42,23 +42,27 @@ fn cloth_on_sphere(duration: f64) -> Scene {
         .offset([-0.5, 0.4, -0.5])
         .build()
         .unwrap();
+    let sphere = Obstacle::new(Shape::Sphere {
+        center: Vec3::zeros(),
+        radius: 0.3,
+    });
+    cloth_scene("cloth on sphere", &cloth, sphere.friction(0.3), duration)
+}
+
+/// `cloth` above `obstacle` under gravity, with backward Euler at 1/60 s
+/// and 30 frames a second.
+fn cloth_scene(name: &str, cloth: &Body, obstacle: Obstacle, duration: f64) -> Scene {
     let mut builder = SystemBuilder::new();
     let placement = cloth.add_to(&mut builder);
     builder.gravity([0.0, -9.81, 0.0]);
-    builder.obstacle(
-        Obstacle::new(Shape::Sphere {
-            center: Vec3::zeros(),
-            radius: 0.3,
-        })
-        .friction(0.3),
-    );
+    builder.obstacle(obstacle);
     Scene {
-        name: "cloth on sphere".into(),
+        name: name.into(),
         system: builder.build().unwrap(),
         bodies: vec![SceneBody {
             name: "cloth".into(),
             placement,
-            triangles: placement.triangles(&cloth),
+            triangles: placement.triangles(cloth),
             segments: Vec::new(),
         }],
         integrator: IntegratorSpec::backward_euler(),
@@ -367,4 +371,120 @@ fn explicit_euler_creating_energy_is_warned_of() {
         (summary.newton_iterations_max, summary.energy_excess_max),
         (None, None)
     );
+}
+
+/// A free 8×8 cloth dropped off-centre onto a frictionless sphere, with no
+/// floor: it lands, slides off and falls away.
+fn cloth_sliding_off() -> Scene {
+    let cloth = Cloth::grid(8, 8)
+        .size(0.6, 0.6)
+        .stretch(Springs::per_spring(2e3).damping(0.5))
+        .shear(500.0)
+        .bend(50.0)
+        .offset([-0.05, 0.35, -0.3])
+        .build()
+        .unwrap();
+    let sphere = Obstacle::new(Shape::Sphere {
+        center: Vec3::zeros(),
+        radius: 0.3,
+    });
+    cloth_scene("cloth sliding off", &cloth, sphere, 1.5)
+}
+
+/// The positions of frame `index` in `dir`, read by the independent parser.
+fn frame_positions(dir: &Path, index: usize) -> Vec<Vec3> {
+    let mut file = std::fs::File::open(dir.join(hooke_viz::frame_file_name(index))).unwrap();
+    let ply = Parser::<DefaultElement>::new().read_ply(&mut file).unwrap();
+    let float = |p: &Property| match p {
+        Property::Float(c) => f64::from(*c),
+        other => panic!("not a float: {other:?}"),
+    };
+    ply.payload["vertex"]
+        .iter()
+        .map(|v| Vec3::new(float(&v["x"]), float(&v["y"]), float(&v["z"])))
+        .collect()
+}
+
+#[test]
+fn the_preview_shows_the_cloth_on_the_sphere_not_after_it_slid_off() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("slide");
+    let summary = run(
+        &cloth_sliding_off(),
+        &RunOptions::new(&out).gif(false),
+        &mut (),
+    )
+    .unwrap();
+    let preview = summary.preview_frame.unwrap();
+    // Particles within 5 mm of the sphere's surface, from the frame files.
+    let touching = |index| {
+        frame_positions(&out, index)
+            .iter()
+            .filter(|x| x.norm() - 0.3 < 5e-3)
+            .count()
+    };
+    let last = summary.frames - 1;
+    assert_eq!(touching(last), 0, "the cloth has slid off by the end");
+    assert!(preview < last);
+    assert!(
+        touching(preview) > 0,
+        "frame {preview} shows the cloth on the sphere"
+    );
+
+    // The picture is that frame, seen by a camera framing it and the sphere.
+    let positions = frame_positions(&out, preview);
+    let sphere = [Shape::Sphere {
+        center: Vec3::zeros(),
+        radius: 0.3,
+    }];
+    let bounds = hooke_viz::Bounds::of_scene(&positions, &sphere).unwrap();
+    let camera = hooke_viz::Camera::new(&bounds, 960, 720, &hooke_viz::View::default()).unwrap();
+    let mesh = hooke_viz::Mesh::new(64, placement_triangles(), Vec::new()).unwrap();
+    let expected = hooke_viz::Renderer::new(camera)
+        .render(&mesh, &positions, &sphere)
+        .unwrap();
+    let written = hooke_viz::Pixmap::load_png(out.join(PREVIEW_FILE)).unwrap();
+    assert!(
+        written.data() == expected.data(),
+        "preview is frame {preview}"
+    );
+}
+
+/// The triangles of the 8×8 cloth of [`cloth_sliding_off`].
+fn placement_triangles() -> Vec<[u32; 3]> {
+    let scene = cloth_sliding_off();
+    scene.bodies[0]
+        .triangles
+        .iter()
+        .map(|t| t.map(|v| u32::try_from(v).unwrap()))
+        .collect()
+}
+
+#[test]
+fn the_output_time_is_measured_apart_from_the_simulation() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("times");
+    let summary = run(&cloth_on_sphere(0.2), &RunOptions::new(&out), &mut ()).unwrap();
+    assert!(summary.simulation_s > 0.0 && summary.output_s > 0.0);
+    assert!(summary.simulation_s + summary.output_s <= summary.wall_s);
+}
+
+#[test]
+fn the_default_scene_lands_and_drapes_without_gaining_energy_or_overstretching() {
+    // Its first second and a half: the fall, the landing and the drape
+    // (the whole run is the main job, `cargo run --release`).
+    let mut scene = hooke_scenes::builtin::load(hooke_cli::DEFAULT_SCENE).unwrap();
+    scene.timing.duration = 1.5;
+    let dir = tempfile::tempdir().unwrap();
+    let summary = run(&scene, &RunOptions::new(dir.path()).gif(false), &mut ()).unwrap();
+    assert_eq!(summary.steps, 90);
+    assert!(summary.warnings.is_empty(), "{:?}", summary.warnings);
+    assert!(
+        summary.contacts_max > 100,
+        "it lands on the sphere and the floor"
+    );
+    assert!(summary.energy_gain <= 0.0, "{}", summary.energy_gain);
+    assert!(summary.energy_max <= summary.energy_initial);
+    assert!(summary.energy_final < 0.6 * summary.energy_initial);
+    assert!(summary.max_strain <= 0.25, "{}", summary.max_strain);
 }

@@ -23,7 +23,12 @@ pub const MAX_GIF_WIDTH: u32 = 480;
 /// Most frames an animation keeps when told the right number of pictures.
 pub const MAX_GIF_FRAMES: usize = 150;
 /// NeuQuant sampling factor, 1 (best) to 30 (fastest).
-const QUANTIZER_SPEED: i32 = 10;
+const QUANTIZER_SPEED: i32 = 30;
+
+/// A picture scaled and quantised for an animation by
+/// [`AnimationWriter::encode`].
+#[derive(Debug)]
+pub struct EncodedFrame(Frame<'static>);
 
 /// Writes `animation.gif`-style files one picture at a time.
 pub struct AnimationWriter {
@@ -108,23 +113,31 @@ impl AnimationWriter {
     ///
     /// # Errors
     ///
-    /// [`OutputError::FrameSize`] for a picture of another size than
-    /// announced; [`OutputError::Write`] or [`OutputError::Encode`] naming
-    /// the file.
+    /// As [`encode`](Self::encode) and [`push_encoded`](Self::push_encoded);
+    /// a picture of the wrong size is refused even when it would be left
+    /// out.
     pub fn push(&mut self, pixmap: &Pixmap) -> Result<(), OutputError> {
-        if (pixmap.width(), pixmap.height()) != (self.width, self.height) {
-            return Err(OutputError::FrameSize {
-                width: self.width,
-                height: self.height,
-                found_width: pixmap.width(),
-                found_height: pixmap.height(),
-            });
-        }
+        self.check_size(pixmap)?;
         let keep = self.pushed % self.stride == 0;
         self.pushed += 1;
-        if !keep {
-            return Ok(());
+        if keep {
+            let frame = self.encode(pixmap)?;
+            self.push_encoded(frame)?;
         }
+        Ok(())
+    }
+
+    /// Scales and quantises `pixmap` into a frame of this animation, ready
+    /// for [`push_encoded`](Self::push_encoded). It takes `&self`, so
+    /// several pictures can be encoded at once on several threads and then
+    /// appended in order.
+    ///
+    /// # Errors
+    ///
+    /// [`OutputError::FrameSize`] for a picture of another size than
+    /// announced.
+    pub fn encode(&self, pixmap: &Pixmap) -> Result<EncodedFrame, OutputError> {
+        self.check_size(pixmap)?;
         let mut rgba = self.scaled_rgba(pixmap).ok_or(OutputError::ImageSize {
             width: self.gif_width.into(),
             height: self.gif_height.into(),
@@ -133,8 +146,31 @@ impl AnimationWriter {
         let mut frame =
             Frame::from_rgba_speed(self.gif_width, self.gif_height, &mut rgba, QUANTIZER_SPEED);
         frame.delay = self.delay;
+        Ok(EncodedFrame(frame))
+    }
+
+    fn check_size(&self, pixmap: &Pixmap) -> Result<(), OutputError> {
+        if (pixmap.width(), pixmap.height()) == (self.width, self.height) {
+            Ok(())
+        } else {
+            Err(OutputError::FrameSize {
+                width: self.width,
+                height: self.height,
+                found_width: pixmap.width(),
+                found_height: pixmap.height(),
+            })
+        }
+    }
+
+    /// Appends a frame made by [`encode`](Self::encode), whatever the
+    /// stride.
+    ///
+    /// # Errors
+    ///
+    /// [`OutputError::Write`] or [`OutputError::Encode`] naming the file.
+    pub fn push_encoded(&mut self, frame: EncodedFrame) -> Result<(), OutputError> {
         self.encoder
-            .write_frame(&frame)
+            .write_frame(&frame.0)
             .map_err(|e| encoding_error(&self.path, e))?;
         self.written += 1;
         Ok(())

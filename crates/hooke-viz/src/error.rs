@@ -43,6 +43,22 @@ pub enum OutputError {
         /// What the operating system said.
         source: std::io::Error,
     },
+    /// A frame file could not be read back.
+    #[error("cannot read {}: {source}", path.display())]
+    Read {
+        /// The file being read.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// A file read back as a frame is not one of the mesh's frames.
+    #[error("{} is not a frame of this mesh: {reason}", path.display())]
+    NotAFrame {
+        /// The file read.
+        path: PathBuf,
+        /// What does not match.
+        reason: &'static str,
+    },
     /// An image encoder rejected its input.
     #[error("cannot encode {format} image {}: {source}", path.display())]
     Encode {

@@ -10,8 +10,9 @@
 //!
 //! The bodies of a scene become one [`Mesh`] ([`scene_mesh`]) and its
 //! obstacles are drawn as they are in the model, [`hooke_core::Shape`]s
-//! moved along their paths ([`obstacles_at`]); the camera frames
-//! [`run_bounds`] for the whole run.
+//! moved along their paths ([`obstacles_at`]). Frames written with
+//! [`write_ply`] are read back with [`read_ply`], so pictures can be drawn
+//! after a run, once it is known where its bodies came to rest.
 //!
 //! # PLY frames
 //!
@@ -45,14 +46,20 @@
 //!
 //! # Pictures
 //!
-//! The [`Renderer`] draws a frame with a perspective [`Camera`]: triangles
-//! flat-shaded (Lambert with ambient light, two-sided), edges as thin lines,
-//! and the obstacles of the scene ([`hooke_core::Shape`]s): spheres, capsules and boxes
-//! shaded like the bodies, and infinite planes as a checkered floor around
-//! the scene. The camera looks at the centre of a [`Bounds`] from a [`View`]
-//! (by default azimuth 35°, elevation 25°, +y up) at the distance where the
-//! scene fills 80 % of the shorter image side; framing the union of the
-//! first and last frames' bounds keeps it still over a run.
+//! The [`Renderer`] draws a frame with a perspective [`Camera`] into a
+//! depth-tested, 2 × 2 supersampled canvas: triangles shaded per sample in
+//! linear light from normals interpolated between their corners, two-sided
+//! with the front ([`Style::body`]) and back ([`Style::body_back`]) of a
+//! surface in different colours, under a key light from above and the
+//! viewer's left ([`Renderer::light`]) and a sky-and-ground ambient light;
+//! edges as thin lines; and the obstacles of the scene
+//! ([`hooke_core::Shape`]s): spheres, capsules and boxes shaded like the
+//! bodies, and infinite planes as a checkered floor that fades into the
+//! background, on which everything else casts a soft shadow (an area light
+//! sampled in several directions, then blurred). The camera looks at the
+//! centre of a [`Bounds`] from a [`View`] (by default azimuth 35°,
+//! elevation 25°, +y up) at the distance where the scene fills 80 % of the
+//! shorter image side.
 //!
 //! ```
 //! use hooke_viz::{Bounds, Camera, Mesh, Renderer, View};
@@ -83,6 +90,7 @@
 //! Nothing here panics on user input.
 
 mod animation;
+mod backdrop;
 mod bounds;
 mod camera;
 mod error;
@@ -90,20 +98,23 @@ mod framing;
 mod mesh;
 pub mod plot;
 mod ply;
+mod raster;
 mod render;
 mod scene_mesh;
+mod shadow;
 mod shape;
 mod style;
 mod tessellate;
 
-pub use animation::{AnimationWriter, MAX_GIF_FRAMES, MAX_GIF_WIDTH};
+pub use animation::{AnimationWriter, EncodedFrame, MAX_GIF_FRAMES, MAX_GIF_WIDTH};
+pub use backdrop::Backdrop;
 pub use bounds::Bounds;
 pub use camera::{Camera, MAX_IMAGE_SIDE, Projected, View};
 pub use error::{OutputError, Primitive};
 pub use framing::run_bounds;
 pub use mesh::Mesh;
 pub use plot::PlotError;
-pub use ply::{frame_file_name, write_frame, write_ply};
+pub use ply::{frame_file_name, read_ply, write_frame, write_ply};
 pub use render::{Renderer, save_png};
 pub use scene_mesh::{obstacles_at, scene_mesh};
 pub use shape::{check_shape, shape_bounds};

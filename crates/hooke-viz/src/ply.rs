@@ -6,7 +6,7 @@
 //! triangles, the `edge` element when it has edges.
 
 use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
 use hooke_core::Vec3;
@@ -66,6 +66,69 @@ pub fn write_ply(path: &Path, mesh: &Mesh, positions: &[Vec3]) -> Result<(), Out
             path: path.to_path_buf(),
             source,
         })
+}
+
+/// Reads back the positions of a frame that [`write_ply`] wrote for `mesh`
+/// (as `f32`, the precision stored): the runner renders its pictures from
+/// the frames on disk once the run is over and the camera can frame where
+/// the bodies came to rest.
+///
+/// ```
+/// use hooke_core::Vec3;
+/// use hooke_viz::{Mesh, read_ply, write_ply};
+/// let mesh = Mesh::new(2, Vec::new(), vec![[0, 1]])?;
+/// let dir = tempfile::tempdir()?;
+/// let path = dir.path().join("frame.ply");
+/// write_ply(&path, &mesh, &[Vec3::zeros(), Vec3::new(0.5, 1.0, -2.0)])?;
+/// assert_eq!(read_ply(&path, &mesh)?[1], Vec3::new(0.5, 1.0, -2.0));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// [`OutputError::Read`] naming `path` when it cannot be read;
+/// [`OutputError::NotAFrame`] when its header is not the one `write_ply`
+/// writes for `mesh` or it ends before the positions do.
+pub fn read_ply(path: &Path, mesh: &Mesh) -> Result<Vec<Vec3>, OutputError> {
+    let read_error = |source| OutputError::Read {
+        path: path.to_path_buf(),
+        source,
+    };
+    let not_a_frame = |reason| OutputError::NotAFrame {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let file = File::open(path).map_err(read_error)?;
+    let expected = header(mesh);
+    let mut input = BufReader::new(file);
+    let mut found = vec![0; expected.len()];
+    match input.read_exact(&mut found) {
+        Ok(()) if found == expected.as_bytes() => {}
+        Ok(()) => return Err(not_a_frame("its header differs")),
+        Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
+            return Err(not_a_frame("its header differs"));
+        }
+        Err(e) => return Err(read_error(e)),
+    }
+    let mut bytes = vec![0; 12 * mesh.vertex_count()];
+    input.read_exact(&mut bytes).map_err(|e| {
+        if e.kind() == std::io::ErrorKind::UnexpectedEof {
+            not_a_frame("it ends within the positions")
+        } else {
+            read_error(e)
+        }
+    })?;
+    let coordinate = |c: &[u8]| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]]));
+    Ok(bytes
+        .chunks_exact(12)
+        .map(|p| {
+            Vec3::new(
+                coordinate(&p[..4]),
+                coordinate(&p[4..8]),
+                coordinate(&p[8..]),
+            )
+        })
+        .collect())
 }
 
 fn header(mesh: &Mesh) -> String {

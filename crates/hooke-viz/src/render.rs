@@ -1,50 +1,79 @@
 //! A small software renderer: a frame and its obstacles as a
 //! [`Pixmap`], and [`save_png`] to store it.
 //!
-//! Everything is drawn as flat-shaded triangles and thin lines with the
-//! painter's algorithm: planes first (they are floors and walls behind the
-//! scene), then all other triangles and lines sorted by mean depth, far
-//! first. A triangle's brightness is Lambert's law with ambient light,
-//! `a + (1 - a)|n·l|`, two-sided so cloth looks the same from either side;
-//! the light comes from over the viewer's left shoulder.
+//! Triangles are filled into a depth-tested, supersampled canvas (see
+//! `raster.rs`), so a cloth lying on a sphere or a floor is drawn in front
+//! of it wherever it is. Shading is per sample, in linear light, from the
+//! normal interpolated between a triangle's corners (the mean of the
+//! normals of the triangles around each vertex of a body; the exact
+//! surface normal on spheres and capsules), so folds read as smooth
+//! curves rather than facets:
+//!
+//! `I = a (0.55 + 0.45 (1 + n·y)/2) + (1 − a) max(0, n·l) (1 − s σ)`,
+//!
+//! with `a` the ambient share ([`Style::ambient`]) lit more from the sky
+//! than from the ground, `l` the key light ([`Renderer::light`]), from
+//! above, over the viewer's left shoulder, and `σ` the share of that light
+//! a floor point cannot see (its soft shadow, see `shadow.rs`) weighed by
+//! [`Style::shadow`]. Bodies are two-sided: the side a triangle's
+//! counter-clockwise normal points to is drawn in [`Style::body`], the
+//! other side, lit with the flipped normal, in [`Style::body_back`], so a
+//! fold that shows the underside of a cloth stands out. Planes are a
+//! checkered floor that fades into the background with distance from the
+//! scene.
 
 use std::fs::File;
 use std::io::Write;
 use std::path::Path;
 
-use hooke_core::Vec3;
-use tiny_skia::{
-    Color, FillRule, GradientStop, LinearGradient, Paint, PathBuilder, Pixmap, Point, Rect,
-    SpreadMode, Stroke, Transform,
-};
+use hooke_core::{Shape, Vec3};
+use tiny_skia::Pixmap;
 
-use crate::camera::{Camera, Projected};
+use crate::backdrop::Backdrop;
+use crate::camera::{Camera, MAX_IMAGE_SIDE};
 use crate::error::OutputError;
 use crate::mesh::Mesh;
-use crate::style::{Style, color};
+use crate::raster::{Canvas, Linear, SUPERSAMPLE, Vertex, to_linear};
+use crate::style::{Rgb, Style};
 use crate::tessellate::{Facet, Tone, tessellate};
-use hooke_core::Shape;
-
-/// Something to draw, already projected.
-enum Item {
-    Triangle([Projected; 3], Color),
-    Line(Projected, Projected),
-}
-
-impl Item {
-    fn depth(&self) -> f64 {
-        match self {
-            Self::Triangle(p, _) => (p[0].depth + p[1].depth + p[2].depth) / 3.0,
-            Self::Line(a, b) => (a.depth + b.depth) * 0.5,
-        }
-    }
-}
 
 /// Draws frames with one camera and style.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Renderer {
     camera: Camera,
     style: Style,
+}
+
+/// The colours of a picture in linear light.
+pub(crate) struct Palette {
+    body: [Linear; 2],
+    obstacle: Linear,
+    pub(crate) floor: [Linear; 2],
+    sky: [Linear; 2],
+    edge: Linear,
+}
+
+impl Palette {
+    pub(crate) fn new(style: &Style) -> Self {
+        let linear = |rgb: Rgb| rgb.map(to_linear);
+        Self {
+            body: [linear(style.body), linear(style.body_back)],
+            obstacle: linear(style.obstacle),
+            floor: style.floor.map(linear),
+            sky: [
+                linear(style.background_top),
+                linear(style.background_bottom),
+            ],
+            edge: linear(style.edge),
+        }
+    }
+
+    /// The background at height `t` in the image, 0 at the top and 1 at
+    /// the bottom.
+    pub(crate) fn background(&self, t: f32) -> Linear {
+        let [top, bottom] = self.sky;
+        [0, 1, 2].map(|c| top[c] + (bottom[c] - top[c]) * t.clamp(0.0, 1.0))
+    }
 }
 
 impl Renderer {
@@ -69,8 +98,30 @@ impl Renderer {
         &self.camera
     }
 
+    /// The style.
+    #[must_use]
+    pub fn style(&self) -> &Style {
+        &self.style
+    }
+
+    /// Unit vector towards the key light: from above (+y), from the
+    /// viewer's left and a little from behind the viewer,
+    /// `l ∝ 0.8 y − 0.7 r + 0.35 h`, with `r` the camera's right and `h`
+    /// the horizontal direction towards the eye. Light grazing from the
+    /// side makes folds read; shadows fall on the floor to the right of
+    /// and behind what casts them, where the camera sees them.
+    #[must_use]
+    pub fn light(&self) -> Vec3 {
+        let back = -self.camera.forward();
+        let towards_eye = Vec3::new(back.x, 0.0, back.z)
+            .try_normalize(1e-9)
+            .unwrap_or(self.camera.up());
+        (Vec3::y() * 0.8 - self.camera.right() * 0.7 + towards_eye * 0.35).normalize()
+    }
+
     /// Draws `mesh` at `positions` among `obstacles`: triangles filled and
-    /// shaded, edges as lines. Parts behind the eye are left out.
+    /// shaded, edges as lines, planes as a floor with the soft shadows of
+    /// everything else. Parts behind the eye are left out.
     ///
     /// # Errors
     ///
@@ -83,148 +134,184 @@ impl Renderer {
         positions: &[Vec3],
         obstacles: &[Shape],
     ) -> Result<Pixmap, OutputError> {
+        self.render_over(&self.backdrop(obstacles)?, mesh, positions, obstacles)
+    }
+
+    /// The background and the planes among `obstacles` (the floor), drawn
+    /// once so that many frames can be drawn over them with
+    /// [`render_over`](Self::render_over): the floor of a run's frames
+    /// does not change while its bodies move.
+    ///
+    /// # Errors
+    ///
+    /// [`OutputError::InvalidShape`] for an obstacle that cannot be drawn,
+    /// [`OutputError::ImageSize`] for a picture too large to allocate.
+    pub fn backdrop(&self, obstacles: &[Shape]) -> Result<Backdrop, OutputError> {
+        for (index, shape) in obstacles.iter().enumerate() {
+            crate::check_shape(shape, index)?;
+        }
+        Ok(Backdrop::new(self, obstacles))
+    }
+
+    /// As [`render`](Self::render), over `backdrop` if it was drawn by this
+    /// renderer for the same planes (otherwise over a new one): the same
+    /// picture, without drawing the floor again.
+    ///
+    /// # Errors
+    ///
+    /// As [`render`](Self::render).
+    pub fn render_over(
+        &self,
+        backdrop: &Backdrop,
+        mesh: &Mesh,
+        positions: &[Vec3],
+        obstacles: &[Shape],
+    ) -> Result<Pixmap, OutputError> {
         mesh.check_frame(positions)?;
         for (index, shape) in obstacles.iter().enumerate() {
             crate::check_shape(shape, index)?;
         }
+        let fresh;
+        let backdrop = if backdrop.fits(self, obstacles) {
+            backdrop
+        } else {
+            fresh = Backdrop::new(self, obstacles);
+            &fresh
+        };
+        let palette = Palette::new(&self.style);
+        let (focus, reach) = (self.camera.target(), self.camera.radius());
+        let mut facets = body_facets(mesh, positions);
+        for shape in obstacles {
+            if !matches!(shape, Shape::Plane { .. }) {
+                tessellate(shape, focus, reach, &mut facets);
+            }
+        }
+        let mut canvas = backdrop.shadowed(self, &facets);
+        for facet in &facets {
+            self.surface(&mut canvas, facet, &palette);
+        }
+        for &[a, b] in mesh.edges() {
+            self.line(
+                &mut canvas,
+                positions[a as usize],
+                positions[b as usize],
+                palette.edge,
+            );
+        }
         let (width, height) = (self.camera.width(), self.camera.height());
-        let mut pixmap = Pixmap::new(width, height).ok_or(OutputError::ImageSize {
+        canvas.resolve().ok_or(OutputError::ImageSize {
             width,
             height,
-            limit: crate::camera::MAX_IMAGE_SIDE,
-        })?;
-        self.background(&mut pixmap);
-
-        let (focus, reach) = (self.camera.target(), self.camera.radius());
-        let mut planes = Vec::new();
-        let mut facets = Vec::new();
-        for shape in obstacles {
-            let out = match shape {
-                Shape::Plane { .. } => &mut planes,
-                _ => &mut facets,
-            };
-            tessellate(shape, focus, reach, out);
-        }
-        let corners = |t: &[u32; 3]| t.map(|v| positions[v as usize]);
-        facets.extend(
-            mesh.triangles()
-                .iter()
-                .filter_map(|t| Facet::new(corners(t), Tone::Body, None)),
-        );
-
-        let light = (self.camera.up() * 0.7 - self.camera.right() * 0.35 - self.camera.forward())
-            .normalize();
-        let mut items: Vec<Item> = facets
-            .iter()
-            .filter_map(|f| self.project(f, light))
-            .collect();
-        items.extend(mesh.edges().iter().filter_map(|&[a, b]| {
-            let (a, b) = (positions[a as usize], positions[b as usize]);
-            Some(Item::Line(self.camera.project(a)?, self.camera.project(b)?))
-        }));
-        let mut backdrop: Vec<Item> = planes
-            .iter()
-            .filter_map(|f| self.project(f, light))
-            .collect();
-        for list in [&mut backdrop, &mut items] {
-            list.sort_by(|p, q| q.depth().total_cmp(&p.depth()));
-        }
-        for item in backdrop.iter().chain(&items) {
-            self.draw(&mut pixmap, item);
-        }
-        Ok(pixmap)
+            limit: MAX_IMAGE_SIDE,
+        })
     }
 
-    fn background(&self, pixmap: &mut Pixmap) {
-        let (w, h) = (pixmap.width() as f32, pixmap.height() as f32);
-        let shader = LinearGradient::new(
-            Point::from_xy(0.0, 0.0),
-            Point::from_xy(0.0, h),
-            vec![
-                GradientStop::new(0.0, color(self.style.background_top, 1.0)),
-                GradientStop::new(1.0, color(self.style.background_bottom, 1.0)),
-            ],
-            SpreadMode::Pad,
-            Transform::identity(),
-        )
-        .unwrap_or_else(|| tiny_skia::Shader::SolidColor(color(self.style.background_top, 1.0)));
-        let paint = Paint {
-            shader,
-            ..Paint::default()
-        };
-        if let Some(rect) = Rect::from_xywh(0.0, 0.0, w, h) {
-            pixmap.fill_rect(rect, &paint, Transform::identity(), None);
-        }
+    /// Projects `p` onto the canvas, or `None` if it is behind the eye.
+    fn vertex(&self, p: Vec3) -> Option<Vertex> {
+        let q = self.camera.project(p)?;
+        Some(Vertex {
+            x: q.x * SUPERSAMPLE as f64,
+            y: q.y * SUPERSAMPLE as f64,
+            inv_depth: 1.0 / q.depth,
+        })
     }
 
-    /// Projects and shades a facet lit from unit direction `light`, or
-    /// `None` if it is behind the eye or turned away on a closed shape.
-    fn project(&self, facet: &Facet, light: Vec3) -> Option<Item> {
-        let eye = self.camera.eye();
-        if !facet.two_sided && facet.normal.dot(&(facet.corners[0] - eye)) >= 0.0 {
-            return None;
-        }
-        let [a, b, c] = facet.corners.map(|p| self.camera.project(p));
+    /// The light a surface of unit normal `n` (turned towards the viewer)
+    /// reflects, a fraction `shadowed` of its key light blocked.
+    pub(crate) fn intensity(&self, n: Vec3, light: Vec3, shadowed: f64) -> f32 {
         let ambient = self.style.ambient.clamp(0.0, 1.0);
-        let shade = ambient + (1.0 - ambient) * facet.normal.dot(&light).abs();
-        let base = match facet.tone {
-            Tone::Body => self.style.body,
-            Tone::Obstacle => self.style.obstacle,
-            Tone::Tile(bright) => self.style.floor[usize::from(!bright)],
-        };
-        Some(Item::Triangle([a?, b?, c?], color(base, shade)))
+        let sky = 0.5 * (1.0 + n.y);
+        let direct = n.dot(&light).max(0.0) * (1.0 - shadowed);
+        (ambient * (0.55 + 0.45 * sky) + (1.0 - ambient) * direct) as f32
     }
 
-    fn draw(&self, pixmap: &mut Pixmap, item: &Item) {
-        let mut path = PathBuilder::new();
-        let mut paint = Paint {
-            anti_alias: true,
-            ..Paint::default()
+    /// Draws a body or obstacle facet; a closed shape's facet turned away
+    /// from the eye is left out.
+    fn surface(&self, canvas: &mut Canvas, facet: &Facet, palette: &Palette) {
+        let eye = self.camera.eye();
+        let facing = facet.normal.dot(&(eye - facet.corners[0])) > 0.0;
+        if !facing && !facet.two_sided {
+            return;
+        }
+        let Some(corners) = self.corners(facet) else {
+            return;
         };
-        let point = |p: &Projected| (p.x as f32, p.y as f32);
-        match item {
-            Item::Triangle(corners, fill) => {
-                let [a, b, c] = corners.each_ref().map(point);
-                path.move_to(a.0, a.1);
-                path.line_to(b.0, b.1);
-                path.line_to(c.0, c.1);
-                path.close();
-                paint.set_color(*fill);
-                let Some(path) = path.finish() else { return };
-                pixmap.fill_path(
-                    &path,
-                    &paint,
-                    FillRule::Winding,
-                    Transform::identity(),
-                    None,
-                );
-                // A hairline in the fill colour closes the seams that
-                // anti-aliasing leaves between neighbouring triangles.
-                let seam = Stroke {
-                    width: 0.5,
-                    ..Stroke::default()
-                };
-                pixmap.stroke_path(&path, &paint, &seam, Transform::identity(), None);
+        let (side, base) = match facet.tone {
+            Tone::Body => {
+                let side = if facing { 1.0 } else { -1.0 };
+                (side, palette.body[usize::from(!facing)])
             }
-            Item::Line(a, b) => {
-                let (a, b) = (point(a), point(b));
-                path.move_to(a.0, a.1);
-                path.line_to(b.0, b.1);
-                paint.set_color(color(self.style.edge, 1.0));
-                let width = self.style.line_width;
-                if !(width > 0.0 && width.is_finite()) {
-                    return;
-                }
-                let stroke = Stroke {
-                    width,
-                    ..Stroke::default()
-                };
-                if let Some(path) = path.finish() {
-                    pixmap.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
-                }
-            }
+            _ => (1.0, palette.obstacle),
+        };
+        let light = self.light();
+        let normals = facet.corner_normals.map(|n| n * side);
+        canvas.triangle(corners, |_, w| {
+            let n = (normals[0] * w[0] + normals[1] * w[1] + normals[2] * w[2])
+                .try_normalize(1e-12)
+                .unwrap_or(facet.normal * side);
+            let i = self.intensity(n, light, 0.0);
+            base.map(|c| c * i)
+        });
+    }
+
+    /// A facet's corners on the canvas, or `None` if one is behind the eye.
+    pub(crate) fn corners(&self, facet: &Facet) -> Option<[Vertex; 3]> {
+        let [a, b, c] = facet.corners.map(|p| self.vertex(p));
+        Some([a?, b?, c?])
+    }
+
+    /// Draws the segment `a`–`b` as a band of [`Style::line_width`] pixels.
+    fn line(&self, canvas: &mut Canvas, a: Vec3, b: Vec3, color: Linear) {
+        let width = f64::from(self.style.line_width) * SUPERSAMPLE as f64;
+        if !(width > 0.0 && width.is_finite()) {
+            return;
+        }
+        let (Some(p), Some(q)) = (self.vertex(a), self.vertex(b)) else {
+            return;
+        };
+        let (dx, dy) = (q.x - p.x, q.y - p.y);
+        let length = dx.hypot(dy);
+        if length <= f64::EPSILON {
+            return;
+        }
+        let (nx, ny) = (-dy / length * width * 0.5, dx / length * width * 0.5);
+        let shift = |v: Vertex, s: f64| Vertex {
+            x: v.x + nx * s,
+            y: v.y + ny * s,
+            ..v
+        };
+        let band = [shift(p, -1.0), shift(p, 1.0), shift(q, 1.0), shift(q, -1.0)];
+        for corners in [[band[0], band[1], band[2]], [band[0], band[2], band[3]]] {
+            canvas.triangle(corners, |_, _| color);
         }
     }
+}
+
+/// The facets of a body mesh, each corner carrying its vertex normal: the
+/// normalised sum of the (area-weighted) normals of the triangles around
+/// the vertex.
+fn body_facets(mesh: &Mesh, positions: &[Vec3]) -> Vec<Facet> {
+    let corners = |t: &[u32; 3]| t.map(|v| positions[v as usize]);
+    let mut normals = vec![Vec3::zeros(); positions.len()];
+    for t in mesh.triangles() {
+        let [a, b, c] = corners(t);
+        let area_normal = (b - a).cross(&(c - a));
+        for &v in t {
+            normals[v as usize] += area_normal;
+        }
+    }
+    mesh.triangles()
+        .iter()
+        .filter_map(|t| {
+            let facet = Facet::new(corners(t), Tone::Body, None)?;
+            let at = t.map(|v| {
+                normals[v as usize]
+                    .try_normalize(1e-300)
+                    .unwrap_or(facet.normal)
+            });
+            Some(facet.smooth(at))
+        })
+        .collect()
 }
 
 /// Writes `pixmap` to `path` as a PNG file.

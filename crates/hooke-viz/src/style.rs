@@ -1,7 +1,5 @@
 //! [`Style`]: the colours, light and line width of a picture.
 
-use tiny_skia::Color;
-
 /// An sRGB colour, 8 bits a channel.
 pub type Rgb = [u8; 3];
 
@@ -10,10 +8,14 @@ pub type Rgb = [u8; 3];
 pub struct Style {
     /// Background at the top of the image, blending into `background_bottom`.
     pub background_top: Rgb,
-    /// Background at the bottom of the image.
+    /// Background at the bottom of the image, and the colour a floor fades
+    /// into far from the scene.
     pub background_bottom: Rgb,
-    /// Triangles of the bodies.
+    /// The front of the bodies' triangles: the side their counter-clockwise
+    /// normal points to (the top of a horizontal cloth).
     pub body: Rgb,
+    /// The back of the bodies' triangles.
+    pub body_back: Rgb,
     /// Edges of the bodies.
     pub edge: Rgb,
     /// Spheres, boxes and capsules.
@@ -22,6 +24,9 @@ pub struct Style {
     pub floor: [Rgb; 2],
     /// Share of the light that reaches every surface, clamped to [0, 1].
     pub ambient: f64,
+    /// How dark shadows on planes are: the share of the key light a point
+    /// in full shadow loses, clamped to [0, 1] (0 draws no shadows).
+    pub shadow: f64,
     /// Width of edge lines in pixels; zero, negative or NaN draws no lines.
     pub line_width: f32,
 }
@@ -29,20 +34,16 @@ pub struct Style {
 impl Default for Style {
     fn default() -> Self {
         Self {
-            background_top: [236, 241, 248],
-            background_bottom: [196, 207, 222],
-            body: [226, 118, 52],
+            background_top: [226, 234, 244],
+            background_bottom: [246, 244, 238],
+            body: [222, 96, 44],
+            body_back: [238, 206, 120],
             edge: [38, 44, 66],
-            obstacle: [118, 140, 172],
-            floor: [[214, 214, 206], [170, 170, 164]],
-            ambient: 0.35,
+            obstacle: [120, 142, 176],
+            floor: [[238, 236, 228], [214, 211, 202]],
+            ambient: 0.25,
+            shadow: 0.9,
             line_width: 1.5,
         }
     }
-}
-
-/// `rgb` scaled by `shade` in [0, 1], opaque.
-pub(crate) fn color(rgb: Rgb, shade: f64) -> Color {
-    let [r, g, b] = rgb.map(|c| (f64::from(c) * shade.clamp(0.0, 1.0)).round() as u8);
-    Color::from_rgba8(r, g, b, 255)
 }

@@ -5,7 +5,14 @@
 //! are six faces of two triangles, and an infinite plane is a square of
 //! [`TILES`] x [`TILES`] checkered tiles centred under the framed scene.
 //! Normals of closed shapes point outwards, so the renderer can drop the
-//! faces turned away from the eye.
+//! faces turned away from the eye; the corners of spheres and capsules
+//! carry the surface's own normal, so they shade smoothly.
+//!
+//! Each shape is drawn a little inside its surface ([`INSET`] of its radius
+//! or half extent; a plane [`PLANE_INSET`] of the framed radius below
+//! itself), so that a body resting on it — whose particles the contact
+//! response keeps exactly on the surface — is drawn in front of it rather
+//! than fighting it for the same depth.
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -18,7 +25,15 @@ const SEGMENTS: usize = 48;
 /// Latitude steps of a sphere, pole to pole; a capsule's caps take half each.
 const RINGS: usize = 24;
 /// Tiles along each side of a plane's square.
-const TILES: i64 = 12;
+const TILES: i64 = 48;
+/// Side of a plane's tile, in framed radii.
+const TILE: f64 = 1.0 / 3.0;
+/// How far inside its surface a sphere, capsule or box is drawn, as a
+/// fraction of its radius or half extents: more than the sagitta of a
+/// body's facets lying on a sphere of [`SEGMENTS`] steps.
+const INSET: f64 = 0.006;
+/// How far below itself a plane is drawn, in framed radii.
+const PLANE_INSET: f64 = 0.004;
 
 /// What colour a facet takes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -31,11 +46,13 @@ pub(crate) enum Tone {
     Tile(bool),
 }
 
-/// A flat triangle with its unit normal.
+/// A flat triangle with its unit normal and the surface normals at its
+/// corners (the flat normal on flat shapes).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Facet {
     pub corners: [Vec3; 3],
     pub normal: Vec3,
+    pub corner_normals: [Vec3; 3],
     pub tone: Tone,
     /// Whether it is seen from both sides (open surfaces) or only from the
     /// side its normal points to (closed shapes).
@@ -61,23 +78,35 @@ impl Facet {
         Some(Self {
             corners,
             normal,
+            corner_normals: [normal; 3],
             tone,
             two_sided: inside.is_none(),
         })
     }
+
+    /// The same facet with the surface normals `normals` at its corners.
+    pub fn smooth(self, normals: [Vec3; 3]) -> Self {
+        Self {
+            corner_normals: normals,
+            ..self
+        }
+    }
 }
 
 /// Appends the facets of `shape` to `out`. A plane is drawn as a square of
-/// side `4 reach` centred on the projection of `focus` onto it.
+/// [`TILES`]² tiles of side [`TILE`]` reach` centred on the projection of
+/// `focus` onto it.
 pub(crate) fn tessellate(shape: &Shape, focus: Vec3, reach: f64, out: &mut Vec<Facet>) {
     match *shape {
         Shape::Sphere { center, radius } => {
+            let radius = radius * (1.0 - INSET);
             let profile: Vec<(f64, f64)> = (0..=RINGS)
                 .map(|i| latitude(-FRAC_PI_2 + PI * i as f64 / RINGS as f64, radius, 0.0))
                 .collect();
             revolve(center, Vec3::y(), 0.0, &profile, out);
         }
         Shape::Capsule { a, b, radius } => {
+            let radius = radius * (1.0 - INSET);
             let length = (b - a).norm();
             let axis = if length > 0.0 {
                 (b - a) / length
@@ -97,8 +126,9 @@ pub(crate) fn tessellate(shape: &Shape, focus: Vec3, reach: f64, out: &mut Vec<F
             half_extents,
             rotation,
         } => {
-            let axes: [Vec3; 3] =
-                std::array::from_fn(|i| rotation.column(i).into_owned() * half_extents[i]);
+            let axes: [Vec3; 3] = std::array::from_fn(|i| {
+                rotation.column(i).into_owned() * half_extents[i] * (1.0 - INSET)
+            });
             for i in 0..3 {
                 let (j, k) = ((i + 1) % 3, (i + 2) % 3);
                 for side in [-1.0, 1.0] {
@@ -113,7 +143,16 @@ pub(crate) fn tessellate(shape: &Shape, focus: Vec3, reach: f64, out: &mut Vec<F
                 }
             }
         }
-        Shape::Plane { point, normal } => plane(point, normal.normalize(), focus, reach, out),
+        Shape::Plane { point, normal } => {
+            let normal = normal.normalize();
+            plane(
+                point - normal * (PLANE_INSET * reach),
+                normal,
+                focus,
+                reach,
+                out,
+            );
+        }
     }
 }
 
@@ -140,9 +179,17 @@ fn revolve(origin: Vec3, axis: Vec3, length: f64, profile: &[(f64, f64)], out: &
         for k in 0..SEGMENTS {
             let next = (k + 1) % SEGMENTS;
             let quad = [low[k], low[next], high[next], high[k]];
+            let core = |p: Vec3| origin + axis * (p - origin).dot(&axis).clamp(0.0, length);
             let centroid = quad.iter().sum::<Vec3>() / 4.0;
-            let along = (centroid - origin).dot(&axis).clamp(0.0, length);
-            push_quad(quad, Tone::Obstacle, Some(origin + axis * along), out);
+            let [a, b, c, d] = quad;
+            let outward = |p: Vec3| (p - core(p)).try_normalize(0.0).unwrap_or(axis);
+            let inside = Some(core(centroid));
+            for corners in [[a, b, c], [a, c, d]] {
+                out.extend(
+                    Facet::new(corners, Tone::Obstacle, inside)
+                        .map(|f| f.smooth(corners.map(outward))),
+                );
+            }
         }
     }
 }
@@ -151,7 +198,7 @@ fn revolve(origin: Vec3, axis: Vec3, length: f64, profile: &[(f64, f64)], out: &
 /// Tiles are anchored to the plane, so they stay put as the framing moves.
 fn plane(point: Vec3, normal: Vec3, focus: Vec3, reach: f64, out: &mut Vec<Facet>) {
     let (u, v) = basis(normal);
-    let tile = 4.0 * reach / TILES as f64;
+    let tile = TILE * reach;
     let foot = focus - normal * (focus - point).dot(&normal);
     // Clamped so that absurd scales cannot overflow the tile indices.
     let first =
@@ -175,7 +222,7 @@ fn push_quad(quad: [Vec3; 4], tone: Tone, inside: Option<Vec3>, out: &mut Vec<Fa
 }
 
 /// Two unit vectors completing unit `n` to an orthonormal basis.
-fn basis(n: Vec3) -> (Vec3, Vec3) {
+pub(crate) fn basis(n: Vec3) -> (Vec3, Vec3) {
     let helper = if n.x.abs() < 0.9 {
         Vec3::x()
     } else {
@@ -242,7 +289,12 @@ mod tests {
         assert_eq!(light, facets.len() / 2);
         for f in &facets {
             assert!(f.two_sided);
-            assert!(f.corners.iter().all(|c| (c.y + 1.0).abs() < 1e-12));
+            // Drawn just below the plane, so what rests on it stays in front.
+            assert!(
+                f.corners
+                    .iter()
+                    .all(|c| (c.y + 1.0 + PLANE_INSET).abs() < 1e-12)
+            );
         }
     }
 }

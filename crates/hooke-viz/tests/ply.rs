@@ -1,10 +1,10 @@
-//! PLY frames parse back with an independent reader, and the header is
+//! PLY frames parse back with an independent reader and with `read_ply`,
 //! exactly the one documented.
 
 use std::path::Path;
 
 use hooke_core::Vec3;
-use hooke_viz::{Mesh, OutputError, frame_file_name, write_frame, write_ply};
+use hooke_viz::{Mesh, OutputError, frame_file_name, read_ply, write_frame, write_ply};
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, Ply, Property};
 
@@ -136,4 +136,39 @@ fn a_bad_frame_is_rejected_before_the_file_is_created() {
         })
     ));
     assert!(!path.exists());
+}
+
+#[test]
+fn frames_read_back_as_their_single_precision_positions() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = Mesh::new(3, vec![[0, 1, 2]], Vec::new()).unwrap();
+    let exact = [
+        Vec3::new(0.1, -2.0, 1e-3),
+        Vec3::new(1.0 / 3.0, 5.0, -7.25),
+        Vec3::new(1e6, 0.0, 2.5),
+    ];
+    let path = write_frame(dir.path(), 7, &mesh, &exact).unwrap();
+    let read = read_ply(&path, &mesh).unwrap();
+    for (r, e) in read.iter().zip(&exact) {
+        for (a, b) in r.iter().zip(e.iter()) {
+            assert_eq!(a.to_bits(), f64::from(*b as f32).to_bits());
+        }
+    }
+
+    // Another mesh's frame, a truncated file and a missing one.
+    let rope = Mesh::new(3, Vec::new(), vec![[0, 1]]).unwrap();
+    assert!(matches!(
+        read_ply(&path, &rope),
+        Err(OutputError::NotAFrame { .. })
+    ));
+    let bytes = std::fs::read(&path).unwrap();
+    let cut = dir.path().join("cut.ply");
+    std::fs::write(&cut, &bytes[..bytes.len() - 40]).unwrap();
+    let err = read_ply(&cut, &mesh).unwrap_err();
+    assert!(matches!(err, OutputError::NotAFrame { .. }));
+    assert!(err.to_string().contains("cut.ply"), "{err}");
+    assert!(matches!(
+        read_ply(&dir.path().join("none.ply"), &mesh),
+        Err(OutputError::Read { .. })
+    ));
 }

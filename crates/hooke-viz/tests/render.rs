@@ -189,3 +189,113 @@ fn png_round_trips_and_unwritable_paths_name_the_file() {
     assert!(matches!(&err, OutputError::Create { path, .. } if *path == nowhere));
     assert!(err.to_string().contains("no such dir"));
 }
+
+/// A horizontal square of side `2 half` at height `y`, its triangles
+/// counter-clockwise seen from +y (front up).
+fn square(half: f64, y: f64) -> (Mesh, Vec<Vec3>) {
+    let mesh = Mesh::new(4, vec![[0, 1, 2], [0, 2, 3]], Vec::new()).unwrap();
+    let positions = [(-1.0, -1.0), (-1.0, 1.0), (1.0, 1.0), (1.0, -1.0)]
+        .map(|(x, z)| Vec3::new(x * half, y, z * half))
+        .to_vec();
+    (mesh, positions)
+}
+
+fn luma([r, g, b]: Rgb) -> f64 {
+    0.2126 * f64::from(r) + 0.7152 * f64::from(g) + 0.0722 * f64::from(b)
+}
+
+#[test]
+fn the_floor_is_darker_in_a_clothes_shadow_than_away_from_it() {
+    let (cloth, positions) = square(0.3, 0.6);
+    let bare = Mesh::new(4, Vec::new(), Vec::new()).unwrap();
+    let floor = [Shape::Plane {
+        point: Vec3::zeros(),
+        normal: Vec3::y(),
+    }];
+    let framed = [Vec3::new(-1.2, 0.0, -1.2), Vec3::new(1.2, 0.6, 1.2)];
+    let camera = Camera::new(
+        &Bounds::of_points(&framed).unwrap(),
+        320,
+        240,
+        &View::default(),
+    )
+    .unwrap();
+    let renderer = Renderer::new(camera);
+    let shaded = renderer.render(&cloth, &positions, &floor).unwrap();
+    let empty = renderer.render(&bare, &positions, &floor).unwrap();
+
+    // Where the key light casts the square's centre onto the floor, and the
+    // point as far on the other side of the square's foot, out of shadow.
+    let light = renderer.light();
+    assert!(light.y > 0.0);
+    let centre = Vec3::new(0.0, 0.6, 0.0);
+    let cast = centre - light * (centre.y / light.y);
+    let lit = -cast;
+    assert!(cast.xz().norm() > 0.3, "the shadow falls beside the square");
+    let pixel = |p: Vec3| {
+        let q = camera.project(p).unwrap();
+        (q.x as u32, q.y as u32)
+    };
+    let (x, y) = pixel(cast);
+    let (in_shadow, bare_floor) = (rgb(&shaded, x, y), rgb(&empty, x, y));
+    // Floor, not cloth (orange: red far above blue), and darker than the
+    // same floor without the square above it.
+    assert!(
+        i32::from(in_shadow[0]) - i32::from(in_shadow[2]) < 40,
+        "{in_shadow:?}"
+    );
+    assert!(
+        luma(in_shadow) < 0.8 * luma(bare_floor),
+        "{in_shadow:?} against {bare_floor:?}"
+    );
+    let (x, y) = pixel(lit);
+    assert_eq!(rgb(&shaded, x, y), rgb(&empty, x, y), "no shadow there");
+}
+
+#[test]
+fn the_front_and_the_back_of_a_surface_have_their_own_colours() {
+    let (cloth, positions) = square(0.5, 0.0);
+    let style = Style {
+        body: [200, 40, 40],
+        body_back: [40, 40, 200],
+        ..plain()
+    };
+    for (elevation, front) in [(40.0, true), (-40.0, false)] {
+        let view = View {
+            elevation_degrees: elevation,
+            ..View::default()
+        };
+        let camera = Camera::new(&Bounds::of_points(&positions).unwrap(), 160, 120, &view).unwrap();
+        let picture = Renderer::new(camera)
+            .with_style(style)
+            .render(&cloth, &positions, &[])
+            .unwrap();
+        let [r, _, b] = rgb(&picture, 80, 60);
+        assert_eq!(r > b, front, "elevation {elevation}: {:?}", [r, b]);
+    }
+}
+
+#[test]
+fn a_cloth_resting_on_a_sphere_is_drawn_in_front_of_it() {
+    // A small square touching the top of the sphere, seen from above: its
+    // corners lie inside the sphere's surface by less than a millimetre,
+    // where sorting whole triangles by depth goes wrong.
+    let radius = 0.5;
+    let (cloth, positions) = square(0.05, radius);
+    let sphere = [Shape::Sphere {
+        center: Vec3::zeros(),
+        radius,
+    }];
+    let view = View {
+        elevation_degrees: 60.0,
+        ..View::default()
+    };
+    let camera = Camera::new(&Bounds::of_scene(&[], &sphere).unwrap(), 200, 200, &view).unwrap();
+    let picture = Renderer::new(camera)
+        .with_style(plain())
+        .render(&cloth, &positions, &sphere)
+        .unwrap();
+    let top = camera.project(Vec3::new(0.0, radius, 0.0)).unwrap();
+    let [r, g, b] = rgb(&picture, top.x as u32, top.y as u32);
+    assert!(r > b && r > g, "{:?}", [r, g, b]);
+}
