@@ -176,6 +176,13 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
         } => {
             let solver = match solver {
                 SolverSpec::Cholesky => "sparse Cholesky".to_owned(),
+                SolverSpec::Auto => "Cholesky or multigrid PCG by size".to_owned(),
+                SolverSpec::Amg {
+                    tolerance,
+                    max_iterations,
+                } => {
+                    format!("multigrid PCG to {tolerance:e} in at most {max_iterations} iterations")
+                }
                 SolverSpec::Pcg {
                     tolerance,
                     max_iterations,

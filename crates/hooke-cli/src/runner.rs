@@ -161,6 +161,7 @@ pub fn run(
         linear_iterations_mean: per_step(total.linear_iterations),
         newton_iterations_mean: per_step(total.newton_iterations),
         linear_solves: total.linear_solves,
+        linear_solver: (!total.linear_solver.is_empty()).then(|| total.linear_solver.to_owned()),
         unconverged_solves: total.unconverged_solves,
         contacts_max: record.contacts_max,
         energy_initial: energies.first().map_or(f64::NAN, |s| s.energy.total()),

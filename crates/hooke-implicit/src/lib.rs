@@ -97,6 +97,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod amg;
 mod assembly;
 mod attempt;
 mod block;
@@ -115,6 +116,7 @@ mod solver;
 mod step;
 mod vector;
 
+pub use amg::{Amg, AmgSettings};
 pub use assembly::{Assembler, Linearization};
 pub use block::SymBlock;
 pub use cg::{BlockJacobi, PcgSettings};

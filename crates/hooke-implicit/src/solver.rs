@@ -3,9 +3,10 @@
 
 use hooke_core::{StepError, StepReport, System, Vec3};
 
+use crate::amg::{Amg, AmgError, AmgSettings};
 use crate::assembly::{Assembler, Linearization};
 use crate::block::SymBlock;
-use crate::cg::{self, BlockJacobi, PcgError, PcgSettings, PcgWorkspace};
+use crate::cg::{self, BlockJacobi, PcgError, PcgInfo, PcgSettings, PcgWorkspace};
 use crate::cholesky::SparseCholesky;
 use crate::conditioning::Rates;
 use crate::filter::Filter;
@@ -21,14 +22,87 @@ pub enum LinearSolver {
     /// Sparse Cholesky (`L Lᵀ`, AMD ordering) of the filtered matrix; the
     /// symbolic factorization is computed once per topology.
     Cholesky,
+    /// The filtered PCG preconditioned by one V-cycle of smoothed-aggregation
+    /// multigrid ([`Amg`], default [`AmgSettings`]) on the filtered matrix
+    /// `S A S + I − S`. The hierarchy is built at the first solve and kept
+    /// across Newton iterations and steps, its values refreshed at every
+    /// solve; it is rebuilt when a solve takes more than twice the
+    /// iterations of the first solve after the last build.
+    Amg(PcgSettings),
+    /// Chooses by the system's size: [`LinearSolver::Cholesky`] below
+    /// [`LinearSolver::AUTO_AMG_PARTICLES`] particles, where a factorization
+    /// costs less than building and cycling a hierarchy, and
+    /// [`LinearSolver::Amg`] with the default [`PcgSettings`] from there on,
+    /// where the factor's fill and time grow faster than the multigrid's
+    /// linear cost (and a million-particle factor would not fit in memory).
+    /// The choice is reported in [`StepReport::linear_solver`].
+    Auto,
+}
+
+impl LinearSolver {
+    /// The particle count from which [`LinearSolver::Auto`] takes multigrid.
+    pub const AUTO_AMG_PARTICLES: usize = 4096;
+
+    /// The solver's name as the scene files and reports spell it: `"pcg"`,
+    /// `"cholesky"`, `"amg"` or `"auto"`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Pcg(_) => "pcg",
+            Self::Cholesky => "cholesky",
+            Self::Amg(_) => "amg",
+            Self::Auto => "auto",
+        }
+    }
+}
+
+/// A solver as used: [`LinearSolver::Auto`] resolved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Choice {
+    Pcg(PcgSettings),
+    Cholesky,
+    Amg(PcgSettings),
+}
+
+impl Choice {
+    /// `solver` for `system`: `Auto` by the system's size.
+    fn new(solver: LinearSolver, system: &System) -> Self {
+        match solver {
+            LinearSolver::Pcg(settings) => Self::Pcg(settings),
+            LinearSolver::Cholesky => Self::Cholesky,
+            LinearSolver::Amg(settings) => Self::Amg(settings),
+            LinearSolver::Auto if system.particle_count() >= LinearSolver::AUTO_AMG_PARTICLES => {
+                Self::Amg(PcgSettings::default())
+            }
+            LinearSolver::Auto => Self::Cholesky,
+        }
+    }
+
+    /// The name of the solver (see [`LinearSolver::name`]).
+    fn name(self) -> &'static str {
+        match self {
+            Self::Pcg(_) => "pcg",
+            Self::Cholesky => "cholesky",
+            Self::Amg(_) => "amg",
+        }
+    }
 }
 
 impl Default for LinearSolver {
-    /// Sparse Cholesky: exact at any conditioning the step allows, where
-    /// PCG's iterations grow with the stiffness.
+    /// [`LinearSolver::Auto`].
     fn default() -> Self {
-        Self::Cholesky
+        Self::Auto
     }
+}
+
+/// The multigrid hierarchy of [`LinearSolver::Amg`] and when to rebuild it.
+#[derive(Debug, Default)]
+struct AmgState {
+    amg: Option<Amg>,
+    /// Iterations of the first solve after the last build (0: none yet).
+    baseline: usize,
+    /// Whether the next solve rebuilds the hierarchy.
+    stale: bool,
 }
 
 /// What depends on the system's topology only.
@@ -40,7 +114,10 @@ pub(crate) struct Topology {
     matrix: BlockMatrix,
     jacobi: BlockJacobi,
     filters: Vec<Filter>,
+    /// The solver in use: the one asked for, or the one `Auto` chose.
+    solver: Choice,
     cholesky: Option<SparseCholesky>,
+    amg: AmgState,
 }
 
 impl Topology {
@@ -87,9 +164,10 @@ pub(crate) fn topology<'a>(
     }
     if cached.is_none() {
         let matrix = BlockMatrix::zeros(Pattern::new(system)?);
+        let solver = Choice::new(solver, system);
         let cholesky = match solver {
-            LinearSolver::Cholesky => Some(SparseCholesky::new(&matrix)?),
-            LinearSolver::Pcg(_) => None,
+            Choice::Cholesky => Some(SparseCholesky::new(&matrix)?),
+            _ => None,
         };
         let filters = (0..system.particle_count())
             .map(|i| {
@@ -106,7 +184,9 @@ pub(crate) fn topology<'a>(
             matrix,
             jacobi: BlockJacobi::default(),
             filters,
+            solver,
             cholesky,
+            amg: AmgState::default(),
         });
     }
     Ok(cached.as_mut().expect("built above"))
@@ -116,7 +196,6 @@ pub(crate) fn topology<'a>(
 #[derive(Clone, Copy)]
 pub(crate) struct Solve<'a> {
     pub(crate) system: &'a System,
-    pub(crate) solver: LinearSolver,
     pub(crate) strict: bool,
     pub(crate) time: f64,
 }
@@ -138,8 +217,8 @@ impl Solve<'_> {
     }
 
     /// Solves the filtered system `S A x = S b` last assembled (and amended)
-    /// into `x` (a warm start on entry), recording the solve and the force
-    /// evaluation of its assembly in `report`.
+    /// at `positions` into `x` (a warm start on entry), recording the solve
+    /// and the force evaluation of its assembly in `report`.
     ///
     /// # Errors
     /// [`StepError::NoConvergence`] in strict mode when PCG stops at its
@@ -148,52 +227,99 @@ impl Solve<'_> {
     pub(crate) fn solve(
         self,
         topology: &mut Topology,
+        positions: &[Vec3],
         b: &[Vec3],
         x: &mut [Vec3],
         workspace: &mut PcgWorkspace,
         report: &mut StepReport,
     ) -> Result<(), StepError> {
-        let Self {
-            solver,
-            strict,
-            time,
-            ..
-        } = self;
+        let Self { strict, time, .. } = self;
         let Topology {
             matrix,
             jacobi,
             filters,
+            solver,
             cholesky,
+            amg,
             ..
         } = topology;
         report.force_evaluations += 1;
         report.linear_solves += 1;
-        match solver {
-            LinearSolver::Pcg(settings) => {
-                let info = match cg::solve(matrix, jacobi, filters, b, x, settings, workspace) {
-                    Ok(info) => info,
-                    Err(PcgError::NoConvergence(info)) if !strict => {
-                        report.unconverged_solves += 1;
-                        info
+        report.linear_solver = solver.name();
+        let pcg = |result: Result<PcgInfo, PcgError>, report: &mut StepReport| {
+            let info = match result {
+                Ok(info) => info,
+                Err(PcgError::NoConvergence(info)) if !strict => {
+                    report.unconverged_solves += 1;
+                    info
+                }
+                Err(PcgError::NoConvergence(info)) => {
+                    return Err(StepError::NoConvergence {
+                        time,
+                        iterations: info.iterations,
+                        residual: info.residual,
+                    });
+                }
+                Err(PcgError::NotPositiveDefinite(_)) => {
+                    return Err(StepError::NotPositiveDefinite {
+                        time,
+                        particle: None,
+                    });
+                }
+            };
+            report.linear_iterations += info.iterations;
+            report.linear_residual = report.linear_residual.max(info.residual);
+            Ok(info)
+        };
+        match *solver {
+            Choice::Pcg(settings) => {
+                pcg(
+                    cg::solve(matrix, jacobi, filters, b, x, settings, workspace),
+                    report,
+                )?;
+            }
+            Choice::Amg(settings) => {
+                let not_positive_definite = |e: AmgError| match e {
+                    AmgError::NotPositiveDefinite(particle) => StepError::NotPositiveDefinite {
+                        time,
+                        particle: Some(particle),
+                    },
+                    AmgError::CoarseNotPositiveDefinite => StepError::NotPositiveDefinite {
+                        time,
+                        particle: None,
+                    },
+                    AmgError::TooLarge => StepError::SystemTooLarge {
+                        particles: matrix.rows(),
+                        springs: matrix.pattern().slots(),
+                    },
+                };
+                let hierarchy = match (&mut amg.amg, amg.stale) {
+                    (Some(hierarchy), false) => {
+                        hierarchy
+                            .refresh(matrix, filters)
+                            .map_err(not_positive_definite)?;
+                        hierarchy
                     }
-                    Err(PcgError::NoConvergence(info)) => {
-                        return Err(StepError::NoConvergence {
-                            time,
-                            iterations: info.iterations,
-                            residual: info.residual,
-                        });
-                    }
-                    Err(PcgError::NotPositiveDefinite(_)) => {
-                        return Err(StepError::NotPositiveDefinite {
-                            time,
-                            particle: None,
-                        });
+                    (slot, _) => {
+                        let built = Amg::build(matrix, filters, positions, AmgSettings::default())
+                            .map_err(not_positive_definite)?;
+                        amg.baseline = 0;
+                        amg.stale = false;
+                        slot.insert(built)
                     }
                 };
-                report.linear_iterations += info.iterations;
-                report.linear_residual = report.linear_residual.max(info.residual);
+                let cycle = hierarchy.cycle(matrix, filters);
+                let info = pcg(
+                    cg::solve(matrix, &cycle, filters, b, x, settings, workspace),
+                    report,
+                )?;
+                if amg.baseline == 0 {
+                    amg.baseline = info.iterations.max(1);
+                } else if info.iterations > 2 * amg.baseline {
+                    amg.stale = true;
+                }
             }
-            LinearSolver::Cholesky => {
+            Choice::Cholesky => {
                 let factor = cholesky
                     .as_mut()
                     .expect("built with the topology for this solver");

@@ -20,6 +20,17 @@ pub enum SolverSpec {
     },
     /// Sparse Cholesky.
     Cholesky,
+    /// Filtered PCG preconditioned by smoothed-aggregation multigrid, to a
+    /// relative residual `tolerance`, at most `max_iterations` iterations.
+    Amg {
+        /// Relative residual to stop at.
+        tolerance: f64,
+        /// Iteration cap.
+        max_iterations: usize,
+    },
+    /// Cholesky or multigrid by the system's size
+    /// (`hooke_implicit::LinearSolver::Auto`).
+    Auto,
 }
 
 /// Which integrator a scene runs, with its parameters: a [`Method`] of
@@ -91,22 +102,23 @@ impl IntegratorSpec {
         }
     }
 
-    /// `scheme` with sparse Cholesky and converged Newton steps at the
-    /// integrator's default cap and tolerance
+    /// `scheme` with the automatic solver choice and converged Newton steps
+    /// at the integrator's default cap and tolerance
     /// ([`Implicit::NEWTON_ITERATIONS`], [`Implicit::NEWTON_TOLERANCE`]).
     #[must_use]
     pub fn implicit(scheme: Scheme) -> Self {
         Self::Implicit {
             scheme,
-            solver: SolverSpec::Cholesky,
+            solver: SolverSpec::Auto,
             linearized: false,
             newton_iterations: Implicit::NEWTON_ITERATIONS,
             newton_tolerance: Implicit::NEWTON_TOLERANCE,
         }
     }
 
-    /// Backward Euler with sparse Cholesky and converged Newton steps at
-    /// the integrator's default cap and tolerance: the default of scenes.
+    /// Backward Euler with the automatic solver choice and converged Newton
+    /// steps at the integrator's default cap and tolerance: the default of
+    /// scenes.
     #[must_use]
     pub fn backward_euler() -> Self {
         Self::implicit(Scheme::BackwardEuler)
@@ -140,6 +152,11 @@ impl IntegratorSpec {
                         max_iterations,
                     } => LinearSolver::Pcg(PcgSettings::new(tolerance, max_iterations)?),
                     SolverSpec::Cholesky => LinearSolver::Cholesky,
+                    SolverSpec::Amg {
+                        tolerance,
+                        max_iterations,
+                    } => LinearSolver::Amg(PcgSettings::new(tolerance, max_iterations)?),
+                    SolverSpec::Auto => LinearSolver::Auto,
                 };
                 let implicit = Implicit::new(scheme)
                     .with_solver(solver)

@@ -56,7 +56,7 @@ pub(crate) fn timing(
     Ok(timing)
 }
 
-/// The integrator: backward Euler with Cholesky and converged Newton steps
+/// The integrator: backward Euler with the automatic solver choice and converged Newton steps
 /// unless the table says otherwise; every default is the integrator's own
 /// ([`IntegratorSpec::new`], [`PcgSettings::default`]). Keys that do not apply
 /// to the chosen method or solver are errors.
@@ -194,21 +194,34 @@ fn implicit(
     reject_pcg: impl FnOnce() -> Result<(), SceneFileError>,
 ) -> Result<IntegratorSpec, SceneFileError> {
     let solver = match t.solver.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
-        None | Some(("cholesky", _)) => {
+        None | Some(("auto", _)) => {
+            reject_pcg()?;
+            SolverSpec::Auto
+        }
+        Some(("cholesky", _)) => {
             reject_pcg()?;
             SolverSpec::Cholesky
         }
-        Some(("pcg", _)) => {
+        Some((iterative @ ("pcg" | "amg"), _)) => {
             let defaults = PcgSettings::default();
-            SolverSpec::Pcg {
-                tolerance: t
-                    .tolerance
-                    .as_ref()
-                    .map_or(defaults.tolerance(), |v| *v.get_ref()),
-                max_iterations: t
-                    .max_iterations
-                    .as_ref()
-                    .map_or(defaults.max_iterations(), |v| *v.get_ref()),
+            let tolerance = t
+                .tolerance
+                .as_ref()
+                .map_or(defaults.tolerance(), |v| *v.get_ref());
+            let max_iterations = t
+                .max_iterations
+                .as_ref()
+                .map_or(defaults.max_iterations(), |v| *v.get_ref());
+            if iterative == "pcg" {
+                SolverSpec::Pcg {
+                    tolerance,
+                    max_iterations,
+                }
+            } else {
+                SolverSpec::Amg {
+                    tolerance,
+                    max_iterations,
+                }
             }
         }
         Some((other, span)) => {
@@ -216,7 +229,7 @@ fn implicit(
                 span,
                 "integrator.solver",
                 format!("\"{other}\""),
-                "\"cholesky\" or \"pcg\"",
+                "\"auto\", \"cholesky\", \"pcg\" or \"amg\"",
             ));
         }
     };
