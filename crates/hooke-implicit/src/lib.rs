@@ -11,10 +11,14 @@
 //!    into `A = M + βh C + β²h² K` and the right-hand side, in two parallel
 //!    passes that never allocate: one per spring, one per block row. The
 //!    [`Pattern`] comes from the topology and is built once.
-//! 2. **Solve**: [`cg::solve`] (Baraff–Witkin's modified PCG, block-Jacobi
-//!    preconditioned, pins and other per-particle constraints acting through
-//!    the [`Filter`] inside the loop) or [`SparseCholesky`] (faer, symbolic
-//!    analysis reused) on the same filtered system.
+//! 2. **Solve** ([`LinearSolver`]): [`cg::solve`] (Baraff–Witkin's modified
+//!    PCG, pins and other per-particle constraints acting through the
+//!    [`Filter`] inside the loop) preconditioned by block-Jacobi, by a
+//!    smoothed-aggregation multigrid V-cycle ([`Amg`], the [`amg`] module) or
+//!    by a lagged Cholesky factor, or [`SparseCholesky`] (faer, symbolic
+//!    analysis reused) on the same filtered system; by default
+//!    ([`LinearSolver::Auto`]) Cholesky for small systems and multigrid for
+//!    large ones.
 //! 3. Optional **Newton iterations** with a backtracking line search on the
 //!    incremental potential.
 //!
@@ -120,7 +124,7 @@ pub use amg::{Amg, AmgSettings};
 pub use assembly::{Assembler, Linearization};
 pub use block::SymBlock;
 pub use cg::{BlockJacobi, PcgSettings};
-pub use cholesky::SparseCholesky;
+pub use cholesky::{FactorPreconditioner, SparseCholesky};
 pub use error_control::ErrorControl;
 pub use filter::Filter;
 pub use implicit::{Implicit, Scheme};

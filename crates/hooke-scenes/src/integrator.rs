@@ -28,6 +28,14 @@ pub enum SolverSpec {
         /// Iteration cap.
         max_iterations: usize,
     },
+    /// Filtered PCG preconditioned by a lagged Cholesky factor, to a
+    /// relative residual `tolerance`, at most `max_iterations` iterations.
+    LaggedCholesky {
+        /// Relative residual to stop at.
+        tolerance: f64,
+        /// Iteration cap.
+        max_iterations: usize,
+    },
     /// Cholesky or multigrid by the system's size
     /// (`hooke_implicit::LinearSolver::Auto`).
     Auto,
@@ -156,6 +164,10 @@ impl IntegratorSpec {
                         tolerance,
                         max_iterations,
                     } => LinearSolver::Amg(PcgSettings::new(tolerance, max_iterations)?),
+                    SolverSpec::LaggedCholesky {
+                        tolerance,
+                        max_iterations,
+                    } => LinearSolver::LaggedCholesky(PcgSettings::new(tolerance, max_iterations)?),
                     SolverSpec::Auto => LinearSolver::Auto,
                 };
                 let implicit = Implicit::new(scheme)

@@ -202,7 +202,7 @@ fn implicit(
             reject_pcg()?;
             SolverSpec::Cholesky
         }
-        Some((iterative @ ("pcg" | "amg"), _)) => {
+        Some((iterative @ ("pcg" | "amg" | "lagged-cholesky"), _)) => {
             let defaults = PcgSettings::default();
             let tolerance = t
                 .tolerance
@@ -212,16 +212,19 @@ fn implicit(
                 .max_iterations
                 .as_ref()
                 .map_or(defaults.max_iterations(), |v| *v.get_ref());
-            if iterative == "pcg" {
-                SolverSpec::Pcg {
+            match iterative {
+                "pcg" => SolverSpec::Pcg {
                     tolerance,
                     max_iterations,
-                }
-            } else {
-                SolverSpec::Amg {
+                },
+                "amg" => SolverSpec::Amg {
                     tolerance,
                     max_iterations,
-                }
+                },
+                _ => SolverSpec::LaggedCholesky {
+                    tolerance,
+                    max_iterations,
+                },
             }
         }
         Some((other, span)) => {
@@ -229,7 +232,7 @@ fn implicit(
                 span,
                 "integrator.solver",
                 format!("\"{other}\""),
-                "\"auto\", \"cholesky\", \"pcg\" or \"amg\"",
+                "\"auto\", \"cholesky\", \"pcg\", \"amg\" or \"lagged-cholesky\"",
             ));
         }
     };
