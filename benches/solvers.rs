@@ -9,8 +9,9 @@
 //! - `solve`: one solve as a Newton iteration pays it (Cholesky: refill,
 //!   numeric factorization and solve; multigrid: the refresh of every
 //!   level's values and PCG; block-Jacobi: PCG);
-//! - `step`: one converged backward-Euler step of the integrator, the
-//!   hierarchy or factor kept from the steps before.
+//! - `step`: one converged backward-Euler step of the integrator (up to
+//!   100²), the hierarchy or factor kept from the steps before, and one step
+//!   of Liu et al.'s fast mass-spring method (10 iterations, up to 200²).
 //!
 //! The sides come from `HOOKE_SOLVER_SIDES` (comma-separated, default
 //! `50,100,200,400,1000`); Cholesky runs up to 400², block-Jacobi PCG up to
@@ -23,8 +24,8 @@ use std::hint::black_box;
 use criterion::{BatchSize, BenchmarkId, Criterion, criterion_group, criterion_main};
 use hooke::core::CompressedSprings;
 use hooke::implicit::{
-    Amg, AmgSettings, Assembler, BlockJacobi, BlockMatrix, Filter, Implicit, LinearSolver,
-    Linearization, Pattern, PcgSettings, SparseCholesky, cg,
+    Amg, AmgSettings, Assembler, BlockJacobi, BlockMatrix, FastMassSpring, Filter, Implicit,
+    LinearSolver, Linearization, Pattern, PcgSettings, SparseCholesky, cg,
 };
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Mass, Springs};
@@ -209,27 +210,48 @@ fn linear(c: &mut Criterion) {
 
 /// One converged backward-Euler step of the cloth swinging from its pins
 /// (after ten steps from rest), the integrator (and its factor or
-/// hierarchy) kept across samples.
+/// hierarchy) kept across samples; and the step of Liu et al.'s
+/// fast mass-spring method with its 10 local/global iterations, whose
+/// distance to the converged step is printed.
 fn steps(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
     group.sample_size(10);
-    for n in sides().into_iter().filter(|&n| n <= 100) {
+    for n in sides().into_iter().filter(|&n| n <= 200) {
         let system = cloth(n);
         let mut start = system.initial_state();
         let mut warm_up = Implicit::backward_euler();
         for _ in 0..10 {
             warm_up.step(&system, &mut start, H).unwrap();
         }
-        for (name, solver) in [
-            ("auto", LinearSolver::Auto),
-            ("cholesky", LinearSolver::Cholesky),
-            ("amg", LinearSolver::Amg(PcgSettings::default())),
-        ] {
-            let mut integrator = Implicit::backward_euler().with_solver(solver);
+        let mut converged = start.clone();
+        Implicit::backward_euler()
+            .step(&system, &mut converged, H)
+            .unwrap();
+        let mut integrators: Vec<(&str, Box<dyn Integrator>)> =
+            vec![("fast-mass-spring-10", Box::new(FastMassSpring::default()))];
+        if n <= 100 {
+            for (name, solver) in [
+                ("auto", LinearSolver::Auto),
+                ("cholesky", LinearSolver::Cholesky),
+                ("amg", LinearSolver::Amg(PcgSettings::default())),
+            ] {
+                integrators.push((
+                    name,
+                    Box::new(Implicit::backward_euler().with_solver(solver)),
+                ));
+            }
+        }
+        for (name, mut integrator) in integrators {
             let mut state = start.clone();
             let report = integrator.step(&system, &mut state, H).unwrap();
+            let distance = state
+                .positions()
+                .iter()
+                .zip(converged.positions())
+                .map(|(p, q)| (p - q).norm())
+                .fold(0.0, f64::max);
             eprintln!(
-                "step {name} {n}²: {} ({} Newton iterations, {} linear iterations)",
+                "step {name} {n}²: {} ({} Newton iterations, {} linear iterations), {distance:.1e} m from the converged step",
                 report.linear_solver, report.newton_iterations, report.linear_iterations
             );
             group.bench_with_input(BenchmarkId::new(name, n), &n, |b, _| {

@@ -1,5 +1,6 @@
-//! The coarsest level's direct solve: faer's sparse Cholesky of a small
-//! compressed-row matrix, analysed once per hierarchy.
+//! A direct solve of a scalar symmetric compressed-row matrix (the
+//! multigrid's coarsest level, the fast mass-spring step's constant
+//! matrix): faer's sparse Cholesky, analysed once per pattern.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -11,10 +12,10 @@ use faer::{Conj, MatMut, Par, Side};
 
 use super::csr::Csr;
 
-/// `L Lᵀ = A` for the coarsest level's symmetric `A`: its lower triangle in
+/// `L Lᵀ = A` for a symmetric positive-definite `A`: its lower triangle in
 /// compressed columns (column `j` is the part of row `j` at or right of the
 /// diagonal), AMD-ordered, factorized numerically at every refresh.
-pub(crate) struct CoarseCholesky {
+pub(crate) struct ScalarCholesky {
     col_ptr: Vec<u32>,
     row_idx: Vec<u32>,
     /// Per entry of the lower triangle, its position in the CSR values.
@@ -26,16 +27,16 @@ pub(crate) struct CoarseCholesky {
     solve_memory: MemBuffer,
 }
 
-impl std::fmt::Debug for CoarseCholesky {
+impl std::fmt::Debug for ScalarCholesky {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("CoarseCholesky")
+        f.debug_struct("ScalarCholesky")
             .field("dofs", &(self.col_ptr.len() - 1))
             .field("factor_nonzeros", &self.factor.len())
             .finish_non_exhaustive()
     }
 }
 
-impl CoarseCholesky {
+impl ScalarCholesky {
     /// The layout and symbolic factorization for `a`'s pattern; `None` if
     /// it does not fit 32-bit indices.
     pub(crate) fn new(a: &Csr) -> Option<Self> {
@@ -82,7 +83,7 @@ impl CoarseCholesky {
             + 8 * (self.source.len() + self.values.len() + self.factor.len())
     }
 
-    /// Factorizes `a` (the pattern given to [`CoarseCholesky::new`]); `Err`
+    /// Factorizes `a` (the pattern given to [`ScalarCholesky::new`]); `Err`
     /// if it is not positive definite.
     pub(crate) fn factorize(&mut self, a: &Csr) -> Result<(), ()> {
         for (v, &k) in self.values.iter_mut().zip(&self.source) {

@@ -56,8 +56,8 @@
 //! as many.
 
 mod aggregation;
-mod coarse;
-mod csr;
+pub(crate) mod coarse;
+pub(crate) mod csr;
 mod fine;
 mod prolongation;
 mod smoother;
@@ -67,7 +67,7 @@ use std::cell::RefCell;
 use hooke_core::{ParameterError, Vec3};
 
 use self::aggregation::{Graph, aggregate, strong_mask};
-use self::coarse::CoarseCholesky;
+use self::coarse::ScalarCholesky;
 use self::csr::Csr;
 use self::fine::Neighbours;
 use self::prolongation::{MODES, Tentative, smooth, tentative};
@@ -223,7 +223,7 @@ struct Level {
 struct Coarsest {
     a: Csr,
     /// `None` when the level has no unknowns.
-    cholesky: Option<CoarseCholesky>,
+    cholesky: Option<ScalarCholesky>,
     x: Vec<f64>,
 }
 
@@ -332,7 +332,7 @@ impl Amg {
             cholesky: if next.rows() == 0 {
                 None
             } else {
-                Some(CoarseCholesky::new(&next).ok_or(AmgError::TooLarge)?)
+                Some(ScalarCholesky::new(&next).ok_or(AmgError::TooLarge)?)
             },
             x: vec![0.0; next.rows()],
             a: next,
@@ -439,7 +439,7 @@ impl Amg {
                 .coarsest
                 .cholesky
                 .as_ref()
-                .map_or(0, CoarseCholesky::bytes)
+                .map_or(0, ScalarCholesky::bytes)
             + self.neighbours.bytes()
             + 48 * self.xs.len()
     }
