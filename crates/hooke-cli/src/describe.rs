@@ -167,6 +167,9 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
     match *spec {
         IntegratorSpec::Explicit(_) => String::new(),
         IntegratorSpec::Adaptive { rtol, atol } => format!(", rtol {rtol}, atol {atol}"),
+        IntegratorSpec::FastMassSpring { iterations } => {
+            format!(", {iterations} local/global iterations per step")
+        }
         IntegratorSpec::Implicit {
             solver,
             linearized,
@@ -187,6 +190,12 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
                     tolerance,
                     max_iterations,
                 } => format!("PCG to {tolerance:e} in at most {max_iterations} iterations"),
+                SolverSpec::LaggedCholesky {
+                    tolerance,
+                    max_iterations,
+                } => format!(
+                    "PCG with a lagged Cholesky factor to {tolerance:e} in at most {max_iterations} iterations"
+                ),
             };
             if linearized {
                 format!(", {solver}, linearised (Baraff-Witkin, one solve)")

@@ -65,7 +65,7 @@ impl Settings {
                 newton_iterations: self.newton_iterations,
                 newton_tolerance: self.newton_tolerance,
             },
-            explicit @ IntegratorSpec::Explicit(_) => explicit,
+            fixed @ (IntegratorSpec::Explicit(_) | IntegratorSpec::FastMassSpring { .. }) => fixed,
         };
         spec.build()
     }
@@ -76,7 +76,7 @@ impl Settings {
     pub fn from_scene(spec: &IntegratorSpec) -> Self {
         let defaults = Self::default();
         match *spec {
-            IntegratorSpec::Explicit(_) => defaults,
+            IntegratorSpec::Explicit(_) | IntegratorSpec::FastMassSpring { .. } => defaults,
             IntegratorSpec::Adaptive { rtol, .. } => Self {
                 tolerance: rtol,
                 ..defaults

@@ -3,7 +3,7 @@
 
 use hooke_core::{Integrator, ParameterError};
 use hooke_explicit::{DormandPrince, ExplicitMethod};
-use hooke_implicit::{Implicit, LinearSolver, PcgSettings, Scheme};
+use hooke_implicit::{FastMassSpring, Implicit, LinearSolver, PcgSettings, Scheme};
 
 use crate::Method;
 
@@ -67,12 +67,18 @@ pub enum IntegratorSpec {
         /// Relative Newton tolerance `ε` (see `hooke_implicit::Implicit`).
         newton_tolerance: f64,
     },
+    /// Liu et al.'s fast mass-spring method (`hooke_implicit::FastMassSpring`).
+    FastMassSpring {
+        /// Local/global iterations per step.
+        iterations: usize,
+    },
 }
 
 impl IntegratorSpec {
     /// `method` with the default parameters: Dormand–Prince at
-    /// [`DormandPrince::RTOL`] and [`DormandPrince::ATOL`], the implicit
-    /// methods as [`IntegratorSpec::implicit`].
+    /// [`DormandPrince::RTOL`] and [`DormandPrince::ATOL`], backward Euler
+    /// and BDF2 as [`IntegratorSpec::implicit`], the fast mass-spring
+    /// method with [`FastMassSpring::ITERATIONS`] iterations.
     ///
     /// ```
     /// use hooke_scenes::{IntegratorSpec, Method};
@@ -90,6 +96,9 @@ impl IntegratorSpec {
             },
             Method::BackwardEuler => Self::implicit(Scheme::BackwardEuler),
             Method::Bdf2 => Self::implicit(Scheme::Bdf2),
+            Method::FastMassSpring => Self::FastMassSpring {
+                iterations: FastMassSpring::ITERATIONS,
+            },
         }
     }
 
@@ -107,6 +116,7 @@ impl IntegratorSpec {
                 scheme: Scheme::Bdf2,
                 ..
             } => Method::Bdf2,
+            Self::FastMassSpring { .. } => Method::FastMassSpring,
         }
     }
 
@@ -179,6 +189,7 @@ impl IntegratorSpec {
                     implicit
                 })
             }
+            Self::FastMassSpring { iterations } => Box::new(FastMassSpring::new(iterations)?),
         })
     }
 }

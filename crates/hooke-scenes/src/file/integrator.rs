@@ -104,6 +104,8 @@ pub(crate) fn integrator(
         ("rtol", t.rtol.as_ref().map(Spanned::span)),
         ("atol", t.atol.as_ref().map(Spanned::span)),
     ];
+    let fast_only = [("iterations", t.iterations.as_ref().map(Spanned::span))];
+    let fast_name = format!("method \"{}\"", Method::FastMassSpring);
     let reject = |keys: &[(&str, Option<Range<usize>>)], applies_to: &str| {
         keys.iter()
             .find_map(|(key, span)| span.clone().map(|s| not_for(s, key, applies_to)))
@@ -132,6 +134,7 @@ pub(crate) fn integrator(
             ..
         } => {
             reject(&adaptive_only, &adaptive_name)?;
+            reject(&fast_only, &fast_name)?;
             let reject_pcg = || reject(&pcg_only, "solver \"pcg\"");
             let defaults = (newton_iterations, newton_tolerance);
             implicit(src, t, scheme, defaults, reject_pcg)?
@@ -139,6 +142,7 @@ pub(crate) fn integrator(
         IntegratorSpec::Adaptive { rtol, atol } => {
             reject(&implicit_only, &implicit_names)?;
             reject(&pcg_only, "solver \"pcg\"")?;
+            reject(&fast_only, &fast_name)?;
             IntegratorSpec::Adaptive {
                 rtol: t.rtol.as_ref().map_or(rtol, |v| *v.get_ref()),
                 atol: t.atol.as_ref().map_or(atol, |v| *v.get_ref()),
@@ -148,7 +152,16 @@ pub(crate) fn integrator(
             reject(&implicit_only, &implicit_names)?;
             reject(&pcg_only, "solver \"pcg\"")?;
             reject(&adaptive_only, &adaptive_name)?;
+            reject(&fast_only, &fast_name)?;
             explicit
+        }
+        IntegratorSpec::FastMassSpring { iterations } => {
+            reject(&implicit_only, &implicit_names)?;
+            reject(&pcg_only, "solver \"pcg\"")?;
+            reject(&adaptive_only, &adaptive_name)?;
+            IntegratorSpec::FastMassSpring {
+                iterations: t.iterations.as_ref().map_or(iterations, |v| *v.get_ref()),
+            }
         }
     };
     // The integrators check their own parameter ranges; point at the key.
@@ -169,6 +182,7 @@ pub(crate) fn integrator(
             ),
             ("rtol", t.rtol.as_ref().map(Spanned::span)),
             ("atol", t.atol.as_ref().map(Spanned::span)),
+            ("iterations", t.iterations.as_ref().map(Spanned::span)),
         ]
         .into_iter()
         .find(|(key, _)| *key == e.parameter)

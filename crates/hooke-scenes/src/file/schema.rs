@@ -48,6 +48,7 @@ pub(crate) struct IntegratorTable {
     pub(crate) newton_tolerance: Option<Spanned<f64>>,
     pub(crate) rtol: Option<Spanned<f64>>,
     pub(crate) atol: Option<Spanned<f64>>,
+    pub(crate) iterations: Option<Spanned<usize>>,
 }
 
 /// `[world]`.
