@@ -224,6 +224,9 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
         100.0 * summary.max_strain,
         summary.contacts_max
     )?;
+    for warning in &summary.warnings {
+        writeln!(out, "warning: {warning}")?;
+    }
     let dir = summary.out.display();
     writeln!(out, "wrote {} frames: {dir}/frame_*.ply", summary.frames)?;
     writeln!(out, "picture: {dir}/{PREVIEW_FILE}")?;

@@ -175,8 +175,20 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
             linearized,
             newton_iterations,
             newton_tolerance,
+            max_halvings,
+            strict,
+            error_control,
             ..
         } => {
+            let substeps = match error_control {
+                Some(control) => format!(
+                    "error-controlled substeps to rtol {:e}, atol {:e} m",
+                    control.relative(),
+                    control.absolute()
+                ),
+                None => format!("rejected steps halved at most {max_halvings} times"),
+            };
+            let strict = if strict { ", strict" } else { "" };
             let solver = match solver {
                 SolverSpec::Cholesky => "sparse Cholesky".to_owned(),
                 SolverSpec::Auto => "Cholesky or multigrid PCG by size".to_owned(),
@@ -201,7 +213,7 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
                 format!(", {solver}, linearised (Baraff-Witkin, one solve)")
             } else {
                 format!(
-                    ", {solver}, converged: at most {newton_iterations} Newton iterations to a relative {newton_tolerance:e}"
+                    ", {solver}, converged: at most {newton_iterations} Newton iterations to a relative {newton_tolerance:e}, {substeps}{strict}"
                 )
             }
         }

@@ -6,7 +6,10 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use hooke_core::{EnergyLog, Observer, Simulation, State, StepError, StrainLog, System, Vec3};
+use hooke_core::{
+    EnergyLog, Observer, Simulation, State, StepError, StepReport, StrainLog, System, Vec3,
+};
+use hooke_lab::EnergyBudget;
 use hooke_scenes::{IntegratorSpec, Scene, Timing};
 use hooke_viz::{Bounds, run_bounds, scene_mesh};
 
@@ -119,9 +122,11 @@ pub fn run(
     let mut frames = FrameWriter::new(&options.out, mesh, bounds, options.preview_size, gif)?;
     let mut record = StepRecord::default();
     let (mut energy, mut strain) = (EnergyLog::default(), StrainLog::default());
+    let mut budget = EnergyBudget::new(system);
     let mut state = system.initial_state();
     let run = Simulation::new(system, &mut integrator)
         .observe(1, &mut record)
+        .observe(1, &mut budget)
         .observe(every, &mut frames)
         .observe(every, &mut energy)
         .observe(every, &mut strain)
@@ -129,7 +134,7 @@ pub fn run(
         .run_to_end(&mut state, timing.dt, steps);
     let frame_count = frames.into_result()?;
 
-    let failure = match (run.failure(), record.diverged) {
+    let failure = match (run.failure(), record.diverged.take()) {
         (Some(error), _) => Some((
             error.to_string(),
             matches!(
@@ -145,6 +150,8 @@ pub fn run(
     let implicit = matches!(scene.integrator, IntegratorSpec::Implicit { .. });
     let per_step = |count: usize| implicit.then(|| mean(count, taken));
     let energies = energy.samples();
+    let (energy_gain, energy_gain_time) = budget.max_gain();
+    let warnings = warnings(&total, &record, &budget);
     let summary = Summary {
         scene: scene.name.clone(),
         integrator: integrator.name().to_owned(),
@@ -163,6 +170,16 @@ pub fn run(
         linear_solves: total.linear_solves,
         linear_solver: (!total.linear_solver.is_empty()).then(|| total.linear_solver.to_owned()),
         unconverged_solves: total.unconverged_solves,
+        substeps: total.accepted_steps,
+        rejected_steps: total.rejected_steps,
+        newton_iterations_max: implicit.then_some(total.newton_iterations_max),
+        newton_residual_max: implicit.then_some(total.newton_residual),
+        unconverged_steps: total.unconverged_steps,
+        energy_corrections: total.energy_corrections,
+        energy_excess_max: implicit.then_some(total.energy_excess),
+        energy_gain,
+        energy_gain_time,
+        warnings,
         contacts_max: record.contacts_max,
         energy_initial: energies.first().map_or(f64::NAN, |s| s.energy.total()),
         energy_final: energy_of(system, &state),
@@ -177,6 +194,48 @@ pub fn run(
     };
     write_json(&options.out.join(SUMMARY_FILE), &summary)?;
     Ok(summary)
+}
+
+/// The largest energy gain, relative to `E(0) + max W`, that a run may
+/// show without a warning: rounding, and the implicit methods' own energy
+/// test (relative 1e-9 per step), stay far below it.
+pub const ENERGY_GAIN_WARNING: f64 = 1e-6;
+
+/// The warning lines of a run whose steps summed to `total`: steps accepted
+/// unconverged, linear solves stopped at their cap, energy removed by the
+/// last resort or gained beyond [`ENERGY_GAIN_WARNING`].
+fn warnings(total: &StepReport, record: &StepRecord, budget: &EnergyBudget) -> Vec<String> {
+    let mut lines = Vec::new();
+    if let Some((time, residual)) = record.first_unconverged {
+        lines.push(format!(
+            "{} steps did not converge, the first ending at t = {time:.4} s with Newton \
+             residual {residual:.2e}; `strict = true` in [integrator] makes this an error",
+            total.unconverged_steps
+        ));
+    }
+    if let Some((time, residual)) = record.first_capped_solve {
+        lines.push(format!(
+            "{} linear solves stopped at their iteration cap, the first in the step ending \
+             at t = {time:.4} s with relative residual {residual:.2e}",
+            total.unconverged_solves
+        ));
+    }
+    if total.energy_corrections > 0 {
+        lines.push(format!(
+            "{} steps gained energy at their smallest substep and had it removed from the \
+             kinetic energy, at most {:.3e} J",
+            total.energy_corrections, total.energy_excess
+        ));
+    }
+    let (gain, time) = budget.max_gain();
+    let allowance = budget.allowance();
+    if gain > ENERGY_GAIN_WARNING * allowance.abs() {
+        lines.push(format!(
+            "energy rose {gain:.3e} J above its initial value plus the work of gravity and \
+             pins ({allowance:.3e} J) at t = {time:.4} s"
+        ));
+    }
+    lines
 }
 
 /// Checks that a run of `timing` has a step, a duration and a frame rate

@@ -54,6 +54,40 @@ pub struct Summary {
     pub linear_solver: Option<String>,
     /// Linear solves that stopped at their iteration cap.
     pub unconverged_solves: usize,
+    /// Steps (or substeps) the integrator accepted: more than
+    /// [`steps`](Self::steps) where steps were split, after a rejection,
+    /// for conditioning or by error control.
+    pub substeps: usize,
+    /// Substeps rejected and retried shorter.
+    pub rejected_steps: usize,
+    /// Most Newton iterations one (sub)step took; `None` for integrators
+    /// without them.
+    pub newton_iterations_max: Option<usize>,
+    /// Largest final Newton residual of a step (relative, see
+    /// `hooke_implicit::Implicit`); `None` for integrators without Newton
+    /// iterations.
+    pub newton_residual_max: Option<f64>,
+    /// Steps accepted without converging because their substeps had
+    /// reached the floor; each one is named by a warning.
+    pub unconverged_steps: usize,
+    /// Steps whose energy gain was removed by the implicit methods' last
+    /// resort.
+    pub energy_corrections: usize,
+    /// Largest energy gain of one step beyond the work of external forces
+    /// as the implicit integrator measured it, J; `None` for integrators
+    /// that do not measure it.
+    pub energy_excess_max: Option<f64>,
+    /// Largest energy gain `E(t) − E(0) − W(t)` over the steps, J, with
+    /// `E` kinetic plus elastic energy and `W` the work of gravity and
+    /// scripted pins (see `hooke_lab::EnergyBudget`): at most zero for the
+    /// exact motion, whose dissipation only lowers it.
+    pub energy_gain: f64,
+    /// When [`energy_gain`](Self::energy_gain) was reached, s.
+    pub energy_gain_time: f64,
+    /// What went wrong without stopping the run, one line each: steps that
+    /// did not converge, linear solves stopped at their cap, energy
+    /// corrected or gained; `hooke run` prints them.
+    pub warnings: Vec<String>,
     /// Most particle–obstacle contacts at the end of one step.
     pub contacts_max: usize,
     /// Energy of the initial state, J.

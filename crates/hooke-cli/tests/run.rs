@@ -281,3 +281,90 @@ fn image_size(path: &Path) -> (u32, u32) {
     let word = |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap());
     (word(16), word(20))
 }
+
+#[test]
+fn converged_backward_euler_gains_no_energy_and_warns_of_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let summary = run(
+        &cloth_on_sphere(0.5),
+        &RunOptions::new(dir.path()).gif(false),
+        &mut (),
+    )
+    .unwrap();
+    assert_eq!(summary.warnings, Vec::<String>::new());
+    assert_eq!(
+        (summary.unconverged_steps, summary.energy_corrections),
+        (0, 0)
+    );
+    assert!(summary.energy_gain <= 1e-9 * summary.energy_initial.abs().max(1.0));
+    assert!(summary.substeps >= summary.steps);
+    assert!(summary.newton_residual_max.is_some_and(f64::is_finite));
+    assert!(
+        summary.newton_iterations_max >= summary.newton_iterations_mean.map(|m| m.ceil() as usize)
+    );
+}
+
+#[test]
+fn steps_accepted_unconverged_are_warned_of_and_strict_mode_stops_the_run() {
+    let mut scene = cloth_on_sphere(0.2);
+    let IntegratorSpec::Implicit {
+        newton_iterations,
+        max_halvings,
+        ..
+    } = &mut scene.integrator
+    else {
+        unreachable!("the scene is implicit")
+    };
+    (*newton_iterations, *max_halvings) = (1, 0);
+    let dir = tempfile::tempdir().unwrap();
+    let summary = run(&scene, &RunOptions::new(dir.path()).gif(false), &mut ()).unwrap();
+    assert!(summary.error.is_none());
+    assert_eq!(summary.unconverged_steps, summary.steps);
+    let warning = summary
+        .warnings
+        .iter()
+        .find(|w| w.contains("did not converge"))
+        .expect("a warning");
+    assert!(
+        warning.starts_with("12 steps did not converge, the first ending at t = 0.0167 s"),
+        "{warning}"
+    );
+    let (json, _) = read_summary(dir.path());
+    assert_eq!(
+        json["warnings"].as_array().map(Vec::len),
+        Some(summary.warnings.len())
+    );
+
+    let IntegratorSpec::Implicit { strict, .. } = &mut scene.integrator else {
+        unreachable!("the scene is implicit")
+    };
+    *strict = true;
+    let summary = run(&scene, &RunOptions::new(dir.path()).gif(false), &mut ()).unwrap();
+    assert_eq!(summary.steps, 0);
+    let error = summary.error.expect("strict mode fails the first step");
+    assert!(
+        error.contains("t = 0") && error.contains("residual"),
+        "{error}"
+    );
+}
+
+#[test]
+fn explicit_euler_creating_energy_is_warned_of() {
+    let mut scene = swinging_rope();
+    scene.integrator = IntegratorSpec::Explicit(ExplicitMethod::ExplicitEuler);
+    let dir = tempfile::tempdir().unwrap();
+    let summary = run(&scene, &RunOptions::new(dir.path()).gif(false), &mut ()).unwrap();
+    assert!(summary.energy_gain > 0.0);
+    assert!(
+        summary
+            .warnings
+            .iter()
+            .any(|w| w.starts_with("energy rose")),
+        "{:?}",
+        summary.warnings
+    );
+    assert_eq!(
+        (summary.newton_iterations_max, summary.energy_excess_max),
+        (None, None)
+    );
+}

@@ -45,6 +45,12 @@ pub struct ErrorControl {
 }
 
 impl ErrorControl {
+    /// A default relative tolerance: a local error of 0.1 % of a step's
+    /// largest displacement.
+    pub const RELATIVE: f64 = 1e-3;
+    /// A default absolute tolerance, m: a micrometre.
+    pub const ABSOLUTE: f64 = 1e-6;
+
     /// A relative tolerance in `(0, 1)` and an absolute one in m, `≥ 0`.
     ///
     /// # Errors

@@ -338,10 +338,10 @@ impl Implicit {
 
     /// In strict mode a linear solve that stops at its iteration cap, or a
     /// step accepted at the substep floor without converging, fails the step
-    /// with [`StepError::NoConvergence`] naming the time and the residual;
+    /// with [`StepError::NoConvergence`](hooke_core::StepError::NoConvergence) naming the time and the residual;
     /// otherwise (the default) the approximate solution is used and counted
-    /// in [`StepReport::unconverged_solves`] and
-    /// [`StepReport::unconverged_steps`].
+    /// in [`StepReport::unconverged_solves`](hooke_core::StepReport::unconverged_solves) and
+    /// [`StepReport::unconverged_steps`](hooke_core::StepReport::unconverged_steps).
     #[must_use]
     pub fn strict(mut self, strict: bool) -> Self {
         self.strict = strict;

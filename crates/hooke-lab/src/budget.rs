@@ -55,6 +55,8 @@ pub struct EnergyBudget {
     pin_power: f64,
     max_work: f64,
     max_ratio: f64,
+    max_gain: f64,
+    max_gain_time: f64,
     time: f64,
     bound: f64,
     exceeded: bool,
@@ -85,6 +87,8 @@ impl EnergyBudget {
             pin_power: 0.0,
             max_work: 0.0,
             max_ratio: 0.0,
+            max_gain: f64::NEG_INFINITY,
+            max_gain_time: state.time(),
             time: state.time(),
             bound: f64::INFINITY,
             exceeded: false,
@@ -180,6 +184,11 @@ impl EnergyBudget {
         self.max_work = self.max_work.max(work);
         let budget = self.initial + self.max_work;
         let energy = self.energy(system, state);
+        let gain = energy - (self.initial + work);
+        if gain > self.max_gain || gain.is_nan() {
+            self.max_gain = if gain.is_nan() { f64::INFINITY } else { gain };
+            self.max_gain_time = self.time;
+        }
         let ratio = if budget > 0.0 {
             energy / budget
         } else if energy.is_nan() {
@@ -202,6 +211,23 @@ impl EnergyBudget {
     #[must_use]
     pub fn max_ratio(&self) -> f64 {
         self.max_ratio
+    }
+
+    /// `E(0) + max W` so far, J: the largest energy the exact motion could
+    /// have reached, the scale the ratio and the gain are measured against.
+    #[must_use]
+    pub fn allowance(&self) -> f64 {
+        self.initial + self.max_work
+    }
+
+    /// The largest energy gain `E(t) − E(0) − W(t)` over the recorded
+    /// states, J, and the time it was reached: at most zero for the exact
+    /// motion (dissipation only lowers it), positive where the integrator
+    /// created energy; infinite once the energy was not finite, and
+    /// `(−∞, 0)` before any state was recorded.
+    #[must_use]
+    pub fn max_gain(&self) -> (f64, f64) {
+        (self.max_gain, self.max_gain_time)
     }
 }
 
@@ -262,6 +288,8 @@ mod tests {
             assert!((ratio - expected).abs() < 1e-12, "t = {t}: ratio {ratio}");
         }
         assert!((budget.max_ratio() - 1.0).abs() < 1e-12);
+        // Before the lowest point E = W: no gain; after it E < W.
+        assert!(budget.max_gain().0.abs() < 1e-12);
     }
 
     #[test]
@@ -275,6 +303,8 @@ mod tests {
         assert_eq!(budget.record(&system, &still), None);
         let moving = state_at(&system, &[Vec3::zeros()], &[Vec3::new(1.0, 0.0, 0.0)], 0.1);
         assert_eq!(budget.record(&system, &moving), None);
+        // ½·2 kg·(1 m/s)² from nowhere, at t = 0.1 s.
+        assert_eq!(budget.max_gain(), (1.0, 0.1));
         let broken = state_at(
             &system,
             &[Vec3::zeros()],
@@ -283,6 +313,7 @@ mod tests {
         );
         assert_eq!(budget.record(&system, &broken).map(f64::is_nan), Some(true));
         assert!(budget.max_ratio().is_infinite());
+        assert_eq!(budget.max_gain(), (f64::INFINITY, 0.2));
     }
 
     #[test]

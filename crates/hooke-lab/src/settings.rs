@@ -58,12 +58,21 @@ impl Settings {
                     atol: tolerance,
                 }
             }
-            IntegratorSpec::Implicit { scheme, .. } => IntegratorSpec::Implicit {
+            IntegratorSpec::Implicit {
+                scheme,
+                max_halvings,
+                strict,
+                error_control,
+                ..
+            } => IntegratorSpec::Implicit {
                 scheme,
                 solver: self.solver,
                 linearized: self.linearized,
                 newton_iterations: self.newton_iterations,
                 newton_tolerance: self.newton_tolerance,
+                max_halvings,
+                strict,
+                error_control,
             },
             fixed @ (IntegratorSpec::Explicit(_) | IntegratorSpec::FastMassSpring { .. }) => fixed,
         };

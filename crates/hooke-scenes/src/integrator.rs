@@ -3,7 +3,7 @@
 
 use hooke_core::{Integrator, ParameterError};
 use hooke_explicit::{DormandPrince, ExplicitMethod};
-use hooke_implicit::{FastMassSpring, Implicit, LinearSolver, PcgSettings, Scheme};
+use hooke_implicit::{ErrorControl, FastMassSpring, Implicit, LinearSolver, PcgSettings, Scheme};
 
 use crate::Method;
 
@@ -66,6 +66,13 @@ pub enum IntegratorSpec {
         newton_iterations: usize,
         /// Relative Newton tolerance `ε` (see `hooke_implicit::Implicit`).
         newton_tolerance: f64,
+        /// Halvings a rejected step may take: its floor is `dt / 2^max_halvings`.
+        max_halvings: u32,
+        /// Whether a step accepted unconverged at the floor, or a linear
+        /// solve stopped at its cap, is an error instead of a warning.
+        strict: bool,
+        /// Error-controlled variable substeps, or fixed ones (`None`).
+        error_control: Option<ErrorControl>,
     },
     /// Liu et al.'s fast mass-spring method (`hooke_implicit::FastMassSpring`).
     FastMassSpring {
@@ -122,7 +129,9 @@ impl IntegratorSpec {
 
     /// `scheme` with the automatic solver choice and converged Newton steps
     /// at the integrator's default cap and tolerance
-    /// ([`Implicit::NEWTON_ITERATIONS`], [`Implicit::NEWTON_TOLERANCE`]).
+    /// ([`Implicit::NEWTON_ITERATIONS`], [`Implicit::NEWTON_TOLERANCE`]),
+    /// rejected steps halved at most [`Implicit::MAX_HALVINGS`] times,
+    /// not strict, fixed substeps.
     #[must_use]
     pub fn implicit(scheme: Scheme) -> Self {
         Self::Implicit {
@@ -131,6 +140,9 @@ impl IntegratorSpec {
             linearized: false,
             newton_iterations: Implicit::NEWTON_ITERATIONS,
             newton_tolerance: Implicit::NEWTON_TOLERANCE,
+            max_halvings: Implicit::MAX_HALVINGS,
+            strict: false,
+            error_control: None,
         }
     }
 
@@ -163,6 +175,9 @@ impl IntegratorSpec {
                 linearized,
                 newton_iterations,
                 newton_tolerance,
+                max_halvings,
+                strict,
+                error_control,
             } => {
                 let solver = match solver {
                     SolverSpec::Pcg {
@@ -182,7 +197,13 @@ impl IntegratorSpec {
                 };
                 let implicit = Implicit::new(scheme)
                     .with_solver(solver)
-                    .with_newton(newton_iterations, newton_tolerance)?;
+                    .with_newton(newton_iterations, newton_tolerance)?
+                    .with_max_halvings(max_halvings)
+                    .strict(strict);
+                let implicit = match error_control {
+                    Some(control) => implicit.with_error_control(control),
+                    None => implicit,
+                };
                 Box::new(if linearized {
                     implicit.linearized()
                 } else {

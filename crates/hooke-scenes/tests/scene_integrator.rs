@@ -4,13 +4,13 @@
 mod common;
 
 use hooke_explicit::DormandPrince;
-use hooke_implicit::PcgSettings;
+use hooke_implicit::{ErrorControl, PcgSettings};
 use hooke_scenes::{IntegratorSpec, Method, SolverSpec};
 
 use common::{CLOTH, parse};
 
 #[test]
-fn defaults_are_backward_euler_cholesky_one_newton_iteration() {
+fn defaults_are_converged_backward_euler_with_cholesky() {
     let scene = parse(CLOTH).unwrap();
     assert_eq!(scene.integrator, IntegratorSpec::backward_euler());
     assert!((scene.timing.frame_rate - 60.0).abs() < 1e-12);
@@ -92,5 +92,65 @@ fn solvers_and_the_fast_mass_spring_iterations_are_read_and_checked() {
         "method = \"fast-mass-spring\"\nsolver = \"amg\"",
     ] {
         assert!(spec(wrong).is_err(), "{wrong}");
+    }
+}
+
+#[test]
+fn rtol_atol_strict_and_max_halvings_control_the_implicit_substeps() {
+    let spec = |keys: &str| {
+        let text = format!("[integrator]\nmethod = \"bdf2\"\n{keys}\n{CLOTH}");
+        match parse(&text).unwrap().integrator {
+            IntegratorSpec::Implicit {
+                max_halvings,
+                strict,
+                error_control,
+                ..
+            } => (max_halvings, strict, error_control),
+            other => panic!("bdf2 is implicit, got {other:?}"),
+        }
+    };
+    let defaults = spec("");
+    assert_eq!(
+        defaults,
+        (hooke_implicit::Implicit::MAX_HALVINGS, false, None)
+    );
+    assert_eq!(spec("max_halvings = 3\nstrict = true"), (3, true, None));
+    let controlled = |keys| spec(keys).2.map(|c| (c.relative(), c.absolute()));
+    assert_eq!(
+        controlled("rtol = 1e-4"),
+        Some((1e-4, ErrorControl::ABSOLUTE))
+    );
+    assert_eq!(
+        controlled("atol = 1e-8"),
+        Some((ErrorControl::RELATIVE, 1e-8))
+    );
+    assert_eq!(controlled("rtol = 0.01\natol = 0.0"), Some((0.01, 0.0)));
+    // The built integrator is the one the keys describe.
+    let text = format!("[integrator]\nmethod = \"bdf2\"\nrtol = 1e-4\n{CLOTH}");
+    assert_eq!(
+        parse(&text).unwrap().integrator.build().unwrap().name(),
+        "bdf2"
+    );
+}
+
+#[test]
+fn implicit_step_keys_out_of_range_or_misplaced_are_errors_naming_the_key() {
+    for (keys, named) in [
+        ("method = \"bdf2\"\nrtol = 2.0", "integrator.rtol"),
+        (
+            "method = \"backward-euler\"\natol = -1e-3",
+            "integrator.atol",
+        ),
+        ("method = \"rk4\"\nstrict = true", "integrator.strict"),
+        ("method = \"rk4\"\nrtol = 1e-3", "integrator.rtol"),
+        (
+            "method = \"dormand-prince\"\nmax_halvings = 2",
+            "integrator.max_halvings",
+        ),
+        ("method = \"bdf2\"\nmax_halvings = -1", "max_halvings"),
+    ] {
+        let error = parse(&format!("[integrator]\n{keys}\n{CLOTH}")).unwrap_err();
+        let message = error.to_string();
+        assert!(message.contains(named), "{keys}: {message}");
     }
 }

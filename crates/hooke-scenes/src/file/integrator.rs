@@ -3,7 +3,7 @@
 
 use std::ops::Range;
 
-use hooke_implicit::{PcgSettings, Scheme};
+use hooke_implicit::{ErrorControl, PcgSettings, Scheme};
 use toml::Spanned;
 
 use super::error::{ErrorKind, SceneFileError, Source};
@@ -92,6 +92,8 @@ pub(crate) fn integrator(
             "newton_tolerance",
             t.newton_tolerance.as_ref().map(Spanned::span),
         ),
+        ("max_halvings", t.max_halvings.as_ref().map(Spanned::span)),
+        ("strict", t.strict.as_ref().map(Spanned::span)),
     ];
     let pcg_only = [
         ("tolerance", t.tolerance.as_ref().map(Spanned::span)),
@@ -100,7 +102,7 @@ pub(crate) fn integrator(
             t.max_iterations.as_ref().map(Spanned::span),
         ),
     ];
-    let adaptive_only = [
+    let tolerances = [
         ("rtol", t.rtol.as_ref().map(Spanned::span)),
         ("atol", t.atol.as_ref().map(Spanned::span)),
     ];
@@ -120,23 +122,29 @@ pub(crate) fn integrator(
             format!("one of {}", Method::names()),
         ));
     };
-    let adaptive_name = format!("method \"{}\"", Method::DormandPrince);
     let implicit_names = format!(
         "methods \"{}\" and \"{}\"",
         Method::BackwardEuler,
         Method::Bdf2
+    );
+    let error_controlled = format!(
+        "methods \"{}\", \"{}\" and \"{}\"",
+        Method::BackwardEuler,
+        Method::Bdf2,
+        Method::DormandPrince
     );
     let spec = match IntegratorSpec::new(chosen) {
         IntegratorSpec::Implicit {
             scheme,
             newton_iterations,
             newton_tolerance,
+            max_halvings,
+            strict,
             ..
         } => {
-            reject(&adaptive_only, &adaptive_name)?;
             reject(&fast_only, &fast_name)?;
             let reject_pcg = || reject(&pcg_only, "solver \"pcg\"");
-            let defaults = (newton_iterations, newton_tolerance);
+            let defaults = (newton_iterations, newton_tolerance, max_halvings, strict);
             implicit(src, t, scheme, defaults, reject_pcg)?
         }
         IntegratorSpec::Adaptive { rtol, atol } => {
@@ -151,14 +159,14 @@ pub(crate) fn integrator(
         explicit @ IntegratorSpec::Explicit(_) => {
             reject(&implicit_only, &implicit_names)?;
             reject(&pcg_only, "solver \"pcg\"")?;
-            reject(&adaptive_only, &adaptive_name)?;
+            reject(&tolerances, &error_controlled)?;
             reject(&fast_only, &fast_name)?;
             explicit
         }
         IntegratorSpec::FastMassSpring { iterations } => {
             reject(&implicit_only, &implicit_names)?;
             reject(&pcg_only, "solver \"pcg\"")?;
-            reject(&adaptive_only, &adaptive_name)?;
+            reject(&tolerances, &error_controlled)?;
             IntegratorSpec::FastMassSpring {
                 iterations: t.iterations.as_ref().map_or(iterations, |v| *v.get_ref()),
             }
@@ -181,7 +189,9 @@ pub(crate) fn integrator(
                 t.newton_tolerance.as_ref().map(Spanned::span),
             ),
             ("rtol", t.rtol.as_ref().map(Spanned::span)),
+            ("relative tolerance", t.rtol.as_ref().map(Spanned::span)),
             ("atol", t.atol.as_ref().map(Spanned::span)),
+            ("absolute tolerance", t.atol.as_ref().map(Spanned::span)),
             ("iterations", t.iterations.as_ref().map(Spanned::span)),
         ]
         .into_iter()
@@ -198,13 +208,16 @@ pub(crate) fn integrator(
 }
 
 /// The keys of an implicit method's table over the defaults `(newton
-/// iterations, newton tolerance)` of `scheme`; `reject_pcg` fails if the
-/// table has PCG's keys, for Cholesky.
+/// iterations, newton tolerance, max halvings, strict)` of `scheme`;
+/// `reject_pcg` fails if the table has
+/// PCG's keys, for Cholesky. `rtol` or `atol` turn error control on, the
+/// one not given at its default ([`ErrorControl::RELATIVE`],
+/// [`ErrorControl::ABSOLUTE`]).
 fn implicit(
     src: &Source<'_>,
     t: &IntegratorTable,
     scheme: Scheme,
-    (newton_iterations, newton_tolerance): (usize, f64),
+    (newton_iterations, newton_tolerance, max_halvings, strict): (usize, f64, u32, bool),
     reject_pcg: impl FnOnce() -> Result<(), SceneFileError>,
 ) -> Result<IntegratorSpec, SceneFileError> {
     let solver = match t.solver.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
@@ -262,6 +275,24 @@ fn implicit(
             ));
         }
     };
+    let value = |key: Option<&Spanned<f64>>| key.map(|v| *v.get_ref());
+    let error_control = match (value(t.rtol.as_ref()), value(t.atol.as_ref())) {
+        (None, None) => None,
+        (rtol, atol) => Some(
+            ErrorControl::new(
+                rtol.unwrap_or(ErrorControl::RELATIVE),
+                atol.unwrap_or(ErrorControl::ABSOLUTE),
+            )
+            .map_err(|e| {
+                let (key, span) = if e.parameter == "relative tolerance" {
+                    ("rtol", t.rtol.as_ref().map(Spanned::span))
+                } else {
+                    ("atol", t.atol.as_ref().map(Spanned::span))
+                };
+                src.error(span, format!("integrator.{key}"), ErrorKind::Integrator(e))
+            })?,
+        ),
+    };
     Ok(IntegratorSpec::Implicit {
         scheme,
         solver,
@@ -270,9 +301,12 @@ fn implicit(
             .newton_iterations
             .as_ref()
             .map_or(newton_iterations, |v| *v.get_ref()),
-        newton_tolerance: t
-            .newton_tolerance
+        newton_tolerance: value(t.newton_tolerance.as_ref()).unwrap_or(newton_tolerance),
+        max_halvings: t
+            .max_halvings
             .as_ref()
-            .map_or(newton_tolerance, |v| *v.get_ref()),
+            .map_or(max_halvings, |v| *v.get_ref()),
+        strict: t.strict.as_ref().map_or(strict, |v| *v.get_ref()),
+        error_control,
     })
 }

@@ -46,6 +46,8 @@ pub(crate) struct IntegratorTable {
     pub(crate) max_iterations: Option<Spanned<usize>>,
     pub(crate) newton_iterations: Option<Spanned<usize>>,
     pub(crate) newton_tolerance: Option<Spanned<f64>>,
+    pub(crate) max_halvings: Option<Spanned<u32>>,
+    pub(crate) strict: Option<Spanned<bool>>,
     pub(crate) rtol: Option<Spanned<f64>>,
     pub(crate) atol: Option<Spanned<f64>>,
     pub(crate) iterations: Option<Spanned<usize>>,
