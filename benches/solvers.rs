@@ -9,14 +9,15 @@
 //! - `solve`: one solve as a Newton iteration pays it (Cholesky: refill,
 //!   numeric factorization and solve; multigrid: the refresh of every
 //!   level's values and PCG; block-Jacobi: PCG);
-//! - `step` (up to 100²: a converged step of this cloth takes from 8 Newton
-//!   solves at 50² to over a hundred at 100²): one converged backward-Euler
+//! - `step` (a converged step of this cloth takes from 8 Newton solves at
+//!   50² to over a hundred at 100²): one converged backward-Euler
 //!   step of the integrator, the hierarchy or factor kept from the steps
 //!   before, and one step of Liu et al.'s fast mass-spring method (10
 //!   iterations).
 //!
 //! The sides come from `HOOKE_SOLVER_SIDES` (comma-separated, default
-//! `50,100,200,400,1000`); Cholesky runs up to 400², block-Jacobi PCG up to
+//! `50,100,200,400,1000`) and, for `step`, `HOOKE_STEP_SIDES` (default
+//! `50,100`; empty for none); Cholesky runs up to 400², block-Jacobi PCG up to
 //! 200² (beyond, its thousands of iterations take minutes per sample). The
 //! iteration counts and the hierarchies' sizes are printed as the benchmark
 //! sets up. `benches/README.md` has the measured table.
@@ -34,11 +35,18 @@ use hooke::scenes::{Corner, Mass, Springs};
 
 const H: f64 = 1.0 / 60.0;
 
-fn sides() -> Vec<usize> {
-    std::env::var("HOOKE_SOLVER_SIDES")
-        .ok()
-        .map(|s| s.split(',').map(|n| n.trim().parse().unwrap()).collect())
-        .unwrap_or_else(|| vec![50, 100, 200, 400, 1000])
+/// The sides in the environment variable `name` (comma-separated), or
+/// `default`.
+fn sides(name: &str, default: &[usize]) -> Vec<usize> {
+    std::env::var(name).ok().map_or_else(
+        || default.to_vec(),
+        |s| {
+            s.split(',')
+                .filter(|n| !n.trim().is_empty())
+                .map(|n| n.trim().parse().unwrap())
+                .collect()
+        },
+    )
 }
 
 /// The cloth of `n`×`n` particles.
@@ -112,7 +120,7 @@ fn linear(c: &mut Criterion) {
     let mut setup = c.benchmark_group("setup");
     setup.sample_size(10);
     let mut cases = Vec::new();
-    for n in sides() {
+    for n in sides("HOOKE_SOLVER_SIDES", &[50, 100, 200, 400, 1000]) {
         let system = cloth(n);
         let state = wavy(&system);
         let s = step_system(&system, &state);
@@ -218,7 +226,7 @@ fn linear(c: &mut Criterion) {
 fn steps(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
     group.sample_size(10);
-    for n in sides().into_iter().filter(|&n| n <= 100) {
+    for n in sides("HOOKE_STEP_SIDES", &[50, 100]) {
         let system = cloth(n);
         let mut start = system.initial_state();
         let mut warm_up = Implicit::backward_euler();
