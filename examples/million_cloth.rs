@@ -55,7 +55,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             kib / 1024.0,
             kib * 1024.0 / particles as f64
         ),
-        None => println!("{particles} particles: no /proc/self/status to read the peak memory from"),
+        None => {
+            println!("{particles} particles: no /proc/self/status to read the peak memory from")
+        }
     }
     Ok(())
 }
