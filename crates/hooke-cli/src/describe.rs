@@ -167,6 +167,9 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
     match *spec {
         IntegratorSpec::Explicit(_) => String::new(),
         IntegratorSpec::Adaptive { rtol, atol } => format!(", rtol {rtol}, atol {atol}"),
+        IntegratorSpec::FastMassSpring { iterations } => {
+            format!(", {iterations} local/global iterations per step")
+        }
         IntegratorSpec::Implicit {
             solver,
             linearized,
@@ -188,10 +191,23 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
             let strict = if strict { ", strict" } else { "" };
             let solver = match solver {
                 SolverSpec::Cholesky => "sparse Cholesky".to_owned(),
+                SolverSpec::Auto => "Cholesky or multigrid PCG by size".to_owned(),
+                SolverSpec::Amg {
+                    tolerance,
+                    max_iterations,
+                } => {
+                    format!("multigrid PCG to {tolerance:e} in at most {max_iterations} iterations")
+                }
                 SolverSpec::Pcg {
                     tolerance,
                     max_iterations,
                 } => format!("PCG to {tolerance:e} in at most {max_iterations} iterations"),
+                SolverSpec::LaggedCholesky {
+                    tolerance,
+                    max_iterations,
+                } => format!(
+                    "PCG with a lagged Cholesky factor to {tolerance:e} in at most {max_iterations} iterations"
+                ),
             };
             if linearized {
                 format!(", {solver}, linearised (Baraff-Witkin, one solve)")

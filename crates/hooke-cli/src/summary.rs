@@ -58,6 +58,10 @@ pub struct Summary {
     pub newton_iterations_mean: Option<f64>,
     /// Linear systems solved.
     pub linear_solves: usize,
+    /// The linear solver of the last solve (`"cholesky"`, `"pcg"`,
+    /// `"amg"`: what `solver = "auto"` chose); `None` if the integrator
+    /// solves no linear systems.
+    pub linear_solver: Option<String>,
     /// Linear solves that stopped at their iteration cap.
     pub unconverged_solves: usize,
     /// Steps (or substeps) the integrator accepted: more than

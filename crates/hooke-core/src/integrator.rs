@@ -50,6 +50,10 @@ pub struct StepReport {
     /// Particle–obstacle contacts of the step: those resolved at its end,
     /// and for implicit methods those held on an obstacle within it.
     pub contacts: usize,
+    /// The linear solver of an implicit method's last solve, as its scene
+    /// files spell it (`"cholesky"`, `"pcg"`, `"amg"`; what `"auto"` chose);
+    /// empty for methods without linear solves.
+    pub linear_solver: &'static str,
 }
 
 impl StepReport {
@@ -81,6 +85,9 @@ impl AddAssign for StepReport {
         self.energy_excess = self.energy_excess.max(other.energy_excess);
         self.contacts += other.contacts;
         self.newton_residual = self.newton_residual.max(other.newton_residual);
+        if !other.linear_solver.is_empty() {
+            self.linear_solver = other.linear_solver;
+        }
     }
 }
 

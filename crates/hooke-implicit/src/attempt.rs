@@ -123,7 +123,6 @@ impl Implicit {
         let topology = topology(&mut self.topology, solver, system)?;
         let solve = Solve {
             system,
-            solver,
             strict,
             time,
         };
@@ -155,7 +154,7 @@ impl Implicit {
             contacts.prescribe(topology.matrix(), b);
             contacts.add_friction(topology, v0, b);
         }
-        solve.solve(topology, b, dv, pcg, report)?;
+        solve.solve(topology, x0, b, dv, pcg, report)?;
         let z = |i: usize| {
             if constrained {
                 contacts.prescribed[i]

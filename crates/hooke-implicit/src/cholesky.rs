@@ -3,12 +3,16 @@
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 use hooke_core::{Mat3, StepError, Vec3};
 
+use std::cell::RefCell;
+
+use crate::cg::Preconditioner;
 use crate::filter::Filter;
 use crate::matrix::BlockMatrix;
 
@@ -130,13 +134,23 @@ impl SparseCholesky {
         b: &[Vec3],
         x: &mut [Vec3],
     ) -> Result<(), Option<usize>> {
+        self.factorize(a, filters)?;
+        self.solve_factored(filters, b, x);
+        Ok(())
+    }
+
+    /// Factorizes `S A S + I − S` numerically, keeping the factor for
+    /// [`SparseCholesky::solve_factored`].
+    ///
+    /// # Errors
+    /// As [`SparseCholesky::solve`].
+    pub fn factorize(&mut self, a: &BlockMatrix, filters: &[Filter]) -> Result<(), Option<usize>> {
         self.fill(a, filters);
         let dofs = self.rhs.len();
         let pattern =
             SymbolicSparseColMatRef::new_checked(dofs, dofs, &self.col_ptr, None, &self.row_idx);
         let matrix = SparseColMatRef::new(pattern, &self.values);
-        let llt = self
-            .symbolic
+        self.symbolic
             .factorize_numeric_llt(
                 &mut self.factor,
                 matrix,
@@ -155,10 +169,20 @@ impl SparseCholesky {
                     dof.filter(|&d| d < dofs).map(|d| d / 3)
                 },
             )?;
+        Ok(())
+    }
+
+    /// `x = S L⁻ᵀ L⁻¹ S b` with the factor `L Lᵀ` of the last
+    /// [`SparseCholesky::factorize`] (zero before the first): the solution
+    /// of the filtered system that was factorized, and for a later matrix
+    /// of the same pattern (a later Newton iteration, a later step) a
+    /// preconditioner ([`SparseCholesky::preconditioner`]).
+    pub fn solve_factored(&mut self, filters: &[Filter], b: &[Vec3], x: &mut [Vec3]) {
+        let dofs = self.rhs.len();
         for (i, (bi, f)) in b.iter().zip(filters).enumerate() {
             self.rhs[3 * i..3 * i + 3].copy_from_slice(f.apply(*bi).as_slice());
         }
-        llt.solve_in_place_with_conj(
+        LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(&mut self.rhs, dofs, 1),
             self.par,
@@ -167,7 +191,16 @@ impl SparseCholesky {
         for (i, (xi, f)) in x.iter_mut().zip(filters).enumerate() {
             *xi = f.apply(Vec3::from_column_slice(&self.rhs[3 * i..3 * i + 3]));
         }
-        Ok(())
+    }
+
+    /// The last factor as a PCG preconditioner for the filters `filters`:
+    /// `P⁻¹ r = S L⁻ᵀ L⁻¹ S r`, symmetric positive definite whatever matrix
+    /// was factorized, and exact for that one.
+    pub fn preconditioner<'a>(&'a mut self, filters: &'a [Filter]) -> FactorPreconditioner<'a> {
+        FactorPreconditioner {
+            cholesky: RefCell::new(self),
+            filters,
+        }
     }
 
     /// Copies the lower triangle of `S A S + I − S` into `values`.
@@ -198,6 +231,22 @@ impl SparseCholesky {
                 }
             }
         }
+    }
+}
+
+/// A factor of an earlier matrix preconditioning PCG:
+/// [`SparseCholesky::preconditioner`].
+#[derive(Debug)]
+pub struct FactorPreconditioner<'a> {
+    cholesky: RefCell<&'a mut SparseCholesky>,
+    filters: &'a [Filter],
+}
+
+impl Preconditioner for FactorPreconditioner<'_> {
+    fn apply(&self, r: &[Vec3], z: &mut [Vec3]) {
+        self.cholesky
+            .borrow_mut()
+            .solve_factored(self.filters, r, z);
     }
 }
 

@@ -11,10 +11,14 @@
 //!    into `A = M + βh C + β²h² K` and the right-hand side, in two parallel
 //!    passes that never allocate: one per spring, one per block row. The
 //!    [`Pattern`] comes from the topology and is built once.
-//! 2. **Solve**: [`SparseCholesky`] (faer, symbolic analysis reused; the
-//!    default) or [`cg::solve`] (Baraff–Witkin's modified PCG, block-Jacobi
-//!    preconditioned), pins and other per-particle constraints acting
-//!    through the [`Filter`] on the same filtered system.
+//! 2. **Solve** ([`LinearSolver`]): [`cg::solve`] (Baraff–Witkin's modified
+//!    PCG, pins and other per-particle constraints acting through the
+//!    [`Filter`] inside the loop) preconditioned by block-Jacobi, by a
+//!    smoothed-aggregation multigrid V-cycle ([`Amg`], the [`amg`] module) or
+//!    by a lagged Cholesky factor, or [`SparseCholesky`] (faer, symbolic
+//!    analysis reused) on the same filtered system; by default
+//!    ([`LinearSolver::Auto`]) Cholesky for small systems and multigrid for
+//!    large ones.
 //! 3. **Newton iterations to convergence** on the incremental potential
 //!    `Φ`, every iterate accepted through a line search that lowers `Φ`,
 //!    stopped by a scale-free rule on the Newton decrement (default
@@ -26,6 +30,10 @@
 //!    optionally ([`Implicit::with_error_control`]) the substeps follow a
 //!    local error estimate. Everything that fell short is counted in the
 //!    [`StepReport`](hooke_core::StepReport).
+//!
+//! Beside [`Implicit`], [`FastMassSpring`] takes backward-Euler steps the
+//! way Liu et al. (2013) do: a fixed number of local/global iterations on a
+//! constant, prefactored matrix, converging to the same step.
 //!
 //! # Stability, measured
 //!
@@ -105,6 +113,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod amg;
 mod assembly;
 mod attempt;
 mod block;
@@ -114,6 +123,7 @@ mod conditioning;
 mod contact;
 mod energy;
 pub mod error_control;
+mod fast_mass_spring;
 mod filter;
 mod implicit;
 mod matrix;
@@ -123,11 +133,13 @@ mod solver;
 mod step;
 mod vector;
 
+pub use amg::{Amg, AmgSettings};
 pub use assembly::{Assembler, Linearization};
 pub use block::SymBlock;
 pub use cg::{BlockJacobi, PcgSettings};
-pub use cholesky::SparseCholesky;
+pub use cholesky::{FactorPreconditioner, SparseCholesky};
 pub use error_control::ErrorControl;
+pub use fast_mass_spring::FastMassSpring;
 pub use filter::Filter;
 pub use implicit::{Implicit, Scheme};
 pub use matrix::BlockMatrix;

@@ -183,7 +183,7 @@ impl Newton<'_> {
                         self.contacts.add_friction(self.topology, v, self.b);
                     }
                     self.solve
-                        .solve(self.topology, self.b, delta, self.pcg, self.report)
+                        .solve(self.topology, self.x, self.b, delta, self.pcg, self.report)
                 });
             match solved {
                 Err(StepError::NotPositiveDefinite { .. }) if !last => {}

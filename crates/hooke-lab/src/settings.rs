@@ -74,7 +74,7 @@ impl Settings {
                 strict,
                 error_control,
             },
-            explicit @ IntegratorSpec::Explicit(_) => explicit,
+            fixed @ (IntegratorSpec::Explicit(_) | IntegratorSpec::FastMassSpring { .. }) => fixed,
         };
         spec.build()
     }
@@ -85,7 +85,7 @@ impl Settings {
     pub fn from_scene(spec: &IntegratorSpec) -> Self {
         let defaults = Self::default();
         match *spec {
-            IntegratorSpec::Explicit(_) => defaults,
+            IntegratorSpec::Explicit(_) | IntegratorSpec::FastMassSpring { .. } => defaults,
             IntegratorSpec::Adaptive { rtol, .. } => Self {
                 tolerance: rtol,
                 ..defaults

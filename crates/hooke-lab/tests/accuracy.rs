@@ -13,7 +13,11 @@ use hooke_scenes::{ExplicitMethod, builtin};
 fn every_fixed_step_method_converges_at_its_expected_order_on_the_damped_oscillator() {
     let scene = builtin::load("damped-oscillator").unwrap();
     let mut options = AccuracyOptions::for_scene(&scene);
-    options.methods.retain(|m| m.is_fixed_step());
+    // The fast mass-spring method leaves spring damping out, so it
+    // converges to the undamped motion, not this one.
+    options
+        .methods
+        .retain(|&m| m.is_fixed_step() && m != Method::FastMassSpring);
     options.repeat = 1;
     let report = accuracy(&scene, &options, &|_, _| {}).unwrap();
     assert_eq!(report.reference.kind, ReferenceKind::Analytic);

@@ -3,7 +3,7 @@
 
 use hooke_core::{Integrator, ParameterError};
 use hooke_explicit::{DormandPrince, ExplicitMethod};
-use hooke_implicit::{ErrorControl, Implicit, LinearSolver, PcgSettings, Scheme};
+use hooke_implicit::{ErrorControl, FastMassSpring, Implicit, LinearSolver, PcgSettings, Scheme};
 
 use crate::Method;
 
@@ -20,6 +20,25 @@ pub enum SolverSpec {
     },
     /// Sparse Cholesky.
     Cholesky,
+    /// Filtered PCG preconditioned by smoothed-aggregation multigrid, to a
+    /// relative residual `tolerance`, at most `max_iterations` iterations.
+    Amg {
+        /// Relative residual to stop at.
+        tolerance: f64,
+        /// Iteration cap.
+        max_iterations: usize,
+    },
+    /// Filtered PCG preconditioned by a lagged Cholesky factor, to a
+    /// relative residual `tolerance`, at most `max_iterations` iterations.
+    LaggedCholesky {
+        /// Relative residual to stop at.
+        tolerance: f64,
+        /// Iteration cap.
+        max_iterations: usize,
+    },
+    /// Cholesky or multigrid by the system's size
+    /// (`hooke_implicit::LinearSolver::Auto`).
+    Auto,
 }
 
 /// Which integrator a scene runs, with its parameters: a [`Method`] of
@@ -55,12 +74,18 @@ pub enum IntegratorSpec {
         /// Error-controlled variable substeps, or fixed ones (`None`).
         error_control: Option<ErrorControl>,
     },
+    /// Liu et al.'s fast mass-spring method (`hooke_implicit::FastMassSpring`).
+    FastMassSpring {
+        /// Local/global iterations per step.
+        iterations: usize,
+    },
 }
 
 impl IntegratorSpec {
     /// `method` with the default parameters: Dormand–Prince at
-    /// [`DormandPrince::RTOL`] and [`DormandPrince::ATOL`], the implicit
-    /// methods as [`IntegratorSpec::implicit`].
+    /// [`DormandPrince::RTOL`] and [`DormandPrince::ATOL`], backward Euler
+    /// and BDF2 as [`IntegratorSpec::implicit`], the fast mass-spring
+    /// method with [`FastMassSpring::ITERATIONS`] iterations.
     ///
     /// ```
     /// use hooke_scenes::{IntegratorSpec, Method};
@@ -78,6 +103,9 @@ impl IntegratorSpec {
             },
             Method::BackwardEuler => Self::implicit(Scheme::BackwardEuler),
             Method::Bdf2 => Self::implicit(Scheme::Bdf2),
+            Method::FastMassSpring => Self::FastMassSpring {
+                iterations: FastMassSpring::ITERATIONS,
+            },
         }
     }
 
@@ -95,11 +123,12 @@ impl IntegratorSpec {
                 scheme: Scheme::Bdf2,
                 ..
             } => Method::Bdf2,
+            Self::FastMassSpring { .. } => Method::FastMassSpring,
         }
     }
 
-    /// `scheme` with sparse Cholesky and converged Newton steps at the
-    /// integrator's default cap and tolerance
+    /// `scheme` with the automatic solver choice and converged Newton steps
+    /// at the integrator's default cap and tolerance
     /// ([`Implicit::NEWTON_ITERATIONS`], [`Implicit::NEWTON_TOLERANCE`]),
     /// rejected steps halved at most [`Implicit::MAX_HALVINGS`] times,
     /// not strict, fixed substeps.
@@ -107,7 +136,7 @@ impl IntegratorSpec {
     pub fn implicit(scheme: Scheme) -> Self {
         Self::Implicit {
             scheme,
-            solver: SolverSpec::Cholesky,
+            solver: SolverSpec::Auto,
             linearized: false,
             newton_iterations: Implicit::NEWTON_ITERATIONS,
             newton_tolerance: Implicit::NEWTON_TOLERANCE,
@@ -117,8 +146,9 @@ impl IntegratorSpec {
         }
     }
 
-    /// Backward Euler with sparse Cholesky and converged Newton steps at
-    /// the integrator's default cap and tolerance: the default of scenes.
+    /// Backward Euler with the automatic solver choice and converged Newton
+    /// steps at the integrator's default cap and tolerance: the default of
+    /// scenes.
     #[must_use]
     pub fn backward_euler() -> Self {
         Self::implicit(Scheme::BackwardEuler)
@@ -155,6 +185,15 @@ impl IntegratorSpec {
                         max_iterations,
                     } => LinearSolver::Pcg(PcgSettings::new(tolerance, max_iterations)?),
                     SolverSpec::Cholesky => LinearSolver::Cholesky,
+                    SolverSpec::Amg {
+                        tolerance,
+                        max_iterations,
+                    } => LinearSolver::Amg(PcgSettings::new(tolerance, max_iterations)?),
+                    SolverSpec::LaggedCholesky {
+                        tolerance,
+                        max_iterations,
+                    } => LinearSolver::LaggedCholesky(PcgSettings::new(tolerance, max_iterations)?),
+                    SolverSpec::Auto => LinearSolver::Auto,
                 };
                 let implicit = Implicit::new(scheme)
                     .with_solver(solver)
@@ -171,6 +210,7 @@ impl IntegratorSpec {
                     implicit
                 })
             }
+            Self::FastMassSpring { iterations } => Box::new(FastMassSpring::new(iterations)?),
         })
     }
 }

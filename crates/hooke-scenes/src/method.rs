@@ -9,7 +9,8 @@ use hooke_explicit::{DormandPrince, ExplicitMethod};
 use serde::{Deserialize, Deserializer, Serialize, Serializer, de};
 
 /// An integrator of hooke: one of the ten fixed-step explicit methods,
-/// adaptive Dormand–Prince, backward Euler or BDF2. Its parameters come
+/// adaptive Dormand–Prince, backward Euler, BDF2 or Liu et al.'s fast
+/// mass-spring method. Its parameters come
 /// from an [`IntegratorSpec`](crate::IntegratorSpec), which builds it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Method {
@@ -22,6 +23,9 @@ pub enum Method {
     BackwardEuler,
     /// Second-order backward differentiation on the assembled system.
     Bdf2,
+    /// Liu et al.'s fast mass-spring method: backward Euler by a fixed
+    /// number of local/global iterations on a prefactored constant matrix.
+    FastMassSpring,
 }
 
 /// How a method behaves on the undamped oscillator `x'' = −ω² x` at
@@ -40,9 +44,10 @@ pub enum OscillatorStability {
 
 impl Method {
     /// Every method: the explicit ones in the order of
-    /// [`ExplicitMethod::ALL`], then Dormand–Prince, backward Euler and BDF2.
-    pub const ALL: [Self; 13] = {
-        let mut all = [Self::DormandPrince; 13];
+    /// [`ExplicitMethod::ALL`], then Dormand–Prince, backward Euler, BDF2
+    /// and the fast mass-spring method.
+    pub const ALL: [Self; 14] = {
+        let mut all = [Self::DormandPrince; 14];
         let mut i = 0;
         while i < ExplicitMethod::ALL.len() {
             all[i] = Self::Explicit(ExplicitMethod::ALL[i]);
@@ -50,6 +55,7 @@ impl Method {
         }
         all[11] = Self::BackwardEuler;
         all[12] = Self::Bdf2;
+        all[13] = Self::FastMassSpring;
         all
     };
 
@@ -63,6 +69,7 @@ impl Method {
             Self::DormandPrince => DormandPrince::NAME,
             Self::BackwardEuler => "backward-euler",
             Self::Bdf2 => "bdf2",
+            Self::FastMassSpring => hooke_implicit::FastMassSpring::NAME,
         }
     }
 
@@ -93,7 +100,10 @@ impl Method {
     /// Whether the method solves a linear system per step.
     #[must_use]
     pub fn is_implicit(self) -> bool {
-        matches!(self, Self::BackwardEuler | Self::Bdf2)
+        matches!(
+            self,
+            Self::BackwardEuler | Self::Bdf2 | Self::FastMassSpring
+        )
     }
 
     /// The global order of accuracy of the positions.
@@ -101,7 +111,9 @@ impl Method {
     pub fn expected_order(self) -> f64 {
         use ExplicitMethod as E;
         match self {
-            Self::Explicit(E::ExplicitEuler | E::SymplecticEuler) | Self::BackwardEuler => 1.0,
+            Self::Explicit(E::ExplicitEuler | E::SymplecticEuler)
+            | Self::BackwardEuler
+            | Self::FastMassSpring => 1.0,
             Self::Explicit(
                 E::Leapfrog
                 | E::VelocityVerlet
@@ -136,7 +148,7 @@ impl Method {
                 | E::Beeman,
             ) => OscillatorStability::BoundedUpTo(2.0),
             Self::Explicit(E::Rk4) => OscillatorStability::BoundedUpTo(2.0 * SQRT_2),
-            Self::DormandPrince | Self::BackwardEuler | Self::Bdf2 => {
+            Self::DormandPrince | Self::BackwardEuler | Self::Bdf2 | Self::FastMassSpring => {
                 OscillatorStability::Unconditional
             }
         }

@@ -59,6 +59,43 @@ fn an_unknown_method_is_an_error_listing_every_method() {
 }
 
 #[test]
+fn solvers_and_the_fast_mass_spring_iterations_are_read_and_checked() {
+    let spec = |text: &str| parse(&format!("[integrator]\n{text}\n{CLOTH}"));
+    let solver = |text: &str| match spec(text).unwrap().integrator {
+        IntegratorSpec::Implicit { solver, .. } => solver,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(solver(""), SolverSpec::Auto);
+    assert_eq!(solver("solver = \"auto\""), SolverSpec::Auto);
+    assert_eq!(
+        solver("solver = \"amg\"\ntolerance = 1e-8"),
+        SolverSpec::Amg {
+            tolerance: 1e-8,
+            max_iterations: PcgSettings::default().max_iterations(),
+        }
+    );
+    assert!(matches!(
+        solver("solver = \"lagged-cholesky\""),
+        SolverSpec::LaggedCholesky { .. }
+    ));
+    let message = spec("solver = \"multigrid\"").unwrap_err().to_string();
+    assert!(message.contains("\"amg\""), "{message}");
+    assert_eq!(
+        spec("method = \"fast-mass-spring\"\niterations = 3")
+            .unwrap()
+            .integrator,
+        IntegratorSpec::FastMassSpring { iterations: 3 }
+    );
+    for wrong in [
+        "method = \"fast-mass-spring\"\niterations = 0",
+        "method = \"rk4\"\niterations = 3",
+        "method = \"fast-mass-spring\"\nsolver = \"amg\"",
+    ] {
+        assert!(spec(wrong).is_err(), "{wrong}");
+    }
+}
+
+#[test]
 fn rtol_atol_strict_and_max_halvings_control_the_implicit_substeps() {
     let spec = |keys: &str| {
         let text = format!("[integrator]\nmethod = \"bdf2\"\n{keys}\n{CLOTH}");

@@ -56,7 +56,7 @@ pub(crate) fn timing(
     Ok(timing)
 }
 
-/// The integrator: backward Euler with Cholesky and converged Newton steps
+/// The integrator: backward Euler with the automatic solver choice and converged Newton steps
 /// unless the table says otherwise; every default is the integrator's own
 /// ([`IntegratorSpec::new`], [`PcgSettings::default`]). Keys that do not apply
 /// to the chosen method or solver are errors.
@@ -106,6 +106,8 @@ pub(crate) fn integrator(
         ("rtol", t.rtol.as_ref().map(Spanned::span)),
         ("atol", t.atol.as_ref().map(Spanned::span)),
     ];
+    let fast_only = [("iterations", t.iterations.as_ref().map(Spanned::span))];
+    let fast_name = format!("method \"{}\"", Method::FastMassSpring);
     let reject = |keys: &[(&str, Option<Range<usize>>)], applies_to: &str| {
         keys.iter()
             .find_map(|(key, span)| span.clone().map(|s| not_for(s, key, applies_to)))
@@ -140,6 +142,7 @@ pub(crate) fn integrator(
             strict,
             ..
         } => {
+            reject(&fast_only, &fast_name)?;
             let reject_pcg = || reject(&pcg_only, "solver \"pcg\"");
             let defaults = (newton_iterations, newton_tolerance, max_halvings, strict);
             implicit(src, t, scheme, defaults, reject_pcg)?
@@ -147,6 +150,7 @@ pub(crate) fn integrator(
         IntegratorSpec::Adaptive { rtol, atol } => {
             reject(&implicit_only, &implicit_names)?;
             reject(&pcg_only, "solver \"pcg\"")?;
+            reject(&fast_only, &fast_name)?;
             IntegratorSpec::Adaptive {
                 rtol: t.rtol.as_ref().map_or(rtol, |v| *v.get_ref()),
                 atol: t.atol.as_ref().map_or(atol, |v| *v.get_ref()),
@@ -156,7 +160,16 @@ pub(crate) fn integrator(
             reject(&implicit_only, &implicit_names)?;
             reject(&pcg_only, "solver \"pcg\"")?;
             reject(&tolerances, &error_controlled)?;
+            reject(&fast_only, &fast_name)?;
             explicit
+        }
+        IntegratorSpec::FastMassSpring { iterations } => {
+            reject(&implicit_only, &implicit_names)?;
+            reject(&pcg_only, "solver \"pcg\"")?;
+            reject(&tolerances, &error_controlled)?;
+            IntegratorSpec::FastMassSpring {
+                iterations: t.iterations.as_ref().map_or(iterations, |v| *v.get_ref()),
+            }
         }
     };
     // The integrators check their own parameter ranges; point at the key.
@@ -179,6 +192,7 @@ pub(crate) fn integrator(
             ("relative tolerance", t.rtol.as_ref().map(Spanned::span)),
             ("atol", t.atol.as_ref().map(Spanned::span)),
             ("absolute tolerance", t.atol.as_ref().map(Spanned::span)),
+            ("iterations", t.iterations.as_ref().map(Spanned::span)),
         ]
         .into_iter()
         .find(|(key, _)| *key == e.parameter)
@@ -207,21 +221,37 @@ fn implicit(
     reject_pcg: impl FnOnce() -> Result<(), SceneFileError>,
 ) -> Result<IntegratorSpec, SceneFileError> {
     let solver = match t.solver.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
-        None | Some(("cholesky", _)) => {
+        None | Some(("auto", _)) => {
+            reject_pcg()?;
+            SolverSpec::Auto
+        }
+        Some(("cholesky", _)) => {
             reject_pcg()?;
             SolverSpec::Cholesky
         }
-        Some(("pcg", _)) => {
+        Some((iterative @ ("pcg" | "amg" | "lagged-cholesky"), _)) => {
             let defaults = PcgSettings::default();
-            SolverSpec::Pcg {
-                tolerance: t
-                    .tolerance
-                    .as_ref()
-                    .map_or(defaults.tolerance(), |v| *v.get_ref()),
-                max_iterations: t
-                    .max_iterations
-                    .as_ref()
-                    .map_or(defaults.max_iterations(), |v| *v.get_ref()),
+            let tolerance = t
+                .tolerance
+                .as_ref()
+                .map_or(defaults.tolerance(), |v| *v.get_ref());
+            let max_iterations = t
+                .max_iterations
+                .as_ref()
+                .map_or(defaults.max_iterations(), |v| *v.get_ref());
+            match iterative {
+                "pcg" => SolverSpec::Pcg {
+                    tolerance,
+                    max_iterations,
+                },
+                "amg" => SolverSpec::Amg {
+                    tolerance,
+                    max_iterations,
+                },
+                _ => SolverSpec::LaggedCholesky {
+                    tolerance,
+                    max_iterations,
+                },
             }
         }
         Some((other, span)) => {
@@ -229,7 +259,7 @@ fn implicit(
                 span,
                 "integrator.solver",
                 format!("\"{other}\""),
-                "\"cholesky\" or \"pcg\"",
+                "\"auto\", \"cholesky\", \"pcg\", \"amg\" or \"lagged-cholesky\"",
             ));
         }
     };

@@ -50,6 +50,7 @@ pub(crate) struct IntegratorTable {
     pub(crate) strict: Option<Spanned<bool>>,
     pub(crate) rtol: Option<Spanned<f64>>,
     pub(crate) atol: Option<Spanned<f64>>,
+    pub(crate) iterations: Option<Spanned<usize>>,
 }
 
 /// `[world]`.
