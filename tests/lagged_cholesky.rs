@@ -3,42 +3,14 @@
 //! factorization on a later one, and the integrator's steps with it match
 //! plain Cholesky's.
 
-use hooke::core::CompressedSprings;
 use hooke::implicit::{
-    Assembler, BlockJacobi, BlockMatrix, Filter, Implicit, LinearSolver, Linearization, Pattern,
-    PcgSettings, SparseCholesky, cg,
+    BlockMatrix, Filter, Implicit, LinearSolver, PcgSettings, SparseCholesky, cg,
 };
 use hooke::prelude::*;
 
-const H: f64 = 1.0 / 60.0;
+mod common;
 
-/// The backward-Euler system of `system` at `state`.
-fn system_at(system: &System, state: &State) -> (BlockMatrix, Vec<Vec3>) {
-    let n = system.particle_count();
-    let mut a = BlockMatrix::zeros(Pattern::new(system).unwrap());
-    let mut b = vec![Vec3::zeros(); n];
-    let u: Vec<Vec3> = state.velocities().iter().map(|v| H * v).collect();
-    let lin = Linearization {
-        positions: state.positions(),
-        velocities: state.velocities(),
-        displacement: Some(&u),
-        inertia: &vec![Vec3::zeros(); n],
-        beta_h: H,
-        compressed: CompressedSprings::Clamped,
-        freeze_directions: true,
-    };
-    Assembler::default()
-        .assemble(
-            system,
-            &lin,
-            &mut a,
-            &mut BlockJacobi::default(),
-            &mut b,
-            0.0,
-        )
-        .unwrap();
-    (a, b)
-}
+const H: f64 = 1.0 / 60.0;
 
 #[test]
 fn a_lagged_factor_preconditions_a_later_matrix() {
@@ -63,7 +35,7 @@ fn a_lagged_factor_preconditions_a_later_matrix() {
             }
         })
         .collect();
-    let (a0, b0) = system_at(&system, &state);
+    let (a0, b0, _) = common::linearised_step(&system, &state, H);
     let mut factor = SparseCholesky::new(&a0).unwrap();
     factor.factorize(&a0, &filters).unwrap();
     let settings = PcgSettings::new(1e-12, 1000).unwrap();
@@ -85,7 +57,7 @@ fn a_lagged_factor_preconditions_a_later_matrix() {
     assert!(exact <= 1, "{exact} iterations on the factorized matrix");
     // A step later every spring has turned and stretched a little.
     integrator.step(&system, &mut state, H).unwrap();
-    let (a1, b1) = system_at(&system, &state);
+    let (a1, b1, _) = common::linearised_step(&system, &state, H);
     let (x, lagged) = solve(&mut factor, &a1, &b1);
     let mut expected = vec![Vec3::zeros(); b1.len()];
     SparseCholesky::new(&a1)

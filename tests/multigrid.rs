@@ -4,13 +4,13 @@
 //! bounded as the cloth is refined; and a hierarchy built for one
 //! constraint set solves the system of another.
 
-use hooke::core::CompressedSprings;
 use hooke::implicit::{
-    Amg, AmgSettings, Assembler, BlockJacobi, BlockMatrix, Filter, Implicit, LinearSolver,
-    Linearization, Pattern, PcgSettings, SparseCholesky, cg,
+    Amg, AmgSettings, BlockMatrix, Filter, Implicit, LinearSolver, PcgSettings, SparseCholesky, cg,
 };
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Mass, Springs, TetSplit};
+
+mod common;
 
 const H: f64 = 1.0 / 60.0;
 
@@ -65,29 +65,6 @@ fn moving(system: &System) -> State {
         *v = Vec3::new((k as f64).sin(), -0.5, 0.3 * (1.3 * k as f64).cos());
     }
     state
-}
-
-/// The backward-Euler system of one linearised step of `H` from `state`,
-/// with its block-Jacobi preconditioner.
-fn assembled(system: &System, state: &State) -> (BlockMatrix, Vec<Vec3>, BlockJacobi) {
-    let n = system.particle_count();
-    let mut a = BlockMatrix::zeros(Pattern::new(system).unwrap());
-    let mut b = vec![Vec3::zeros(); n];
-    let mut jacobi = BlockJacobi::default();
-    let u: Vec<Vec3> = state.velocities().iter().map(|v| H * v).collect();
-    let lin = Linearization {
-        positions: state.positions(),
-        velocities: state.velocities(),
-        displacement: Some(&u),
-        inertia: &vec![Vec3::zeros(); n],
-        beta_h: H,
-        compressed: CompressedSprings::Clamped,
-        freeze_directions: true,
-    };
-    Assembler::default()
-        .assemble(system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
-        .unwrap();
-    (a, b, jacobi)
 }
 
 /// The pins as `Fixed`, and with `contacts` every seventh particle held on
@@ -156,7 +133,7 @@ fn amg_pcg_and_cholesky_give_the_same_velocity_change() {
         ("rope", rope()),
     ] {
         let state = moving(&system);
-        let (a, b, _) = assembled(&system, &state);
+        let (a, b, _) = common::linearised_step(&system, &state, H);
         for contacts in [false, true] {
             let filters = filters(&system, contacts);
             let expected = direct(&a, &filters, &b);
@@ -187,7 +164,7 @@ fn amg_iterations_stay_bounded_as_the_cloth_is_refined() {
     for n in [16, 32, 64] {
         let system = cloth(n);
         let state = moving(&system);
-        let (a, b, jacobi) = assembled(&system, &state);
+        let (a, b, jacobi) = common::linearised_step(&system, &state, H);
         let filters = filters(&system, false);
         let mut amg = Amg::build(&a, &filters, state.positions(), AmgSettings::default()).unwrap();
         let (x, iterations) = multigrid(&mut amg, &a, &filters, &b, 1e-6);
@@ -222,7 +199,7 @@ fn amg_iterations_stay_bounded_as_the_cloth_is_refined() {
 fn the_hierarchy_follows_a_changing_constraint_set() {
     let system = cloth(32);
     let state = moving(&system);
-    let (a, b, _) = assembled(&system, &state);
+    let (a, b, _) = common::linearised_step(&system, &state, H);
     let before = filters(&system, false);
     let mut amg = Amg::build(&a, &before, state.positions(), AmgSettings::default()).unwrap();
     let after = filters(&system, true);

@@ -1,9 +1,12 @@
 //! Helpers shared by the integration tests.
 
+use hooke::core::CompressedSprings;
+use hooke::implicit::{Assembler, BlockJacobi, BlockMatrix, Linearization, Pattern};
 use hooke::prelude::*;
 
 /// Largest error of the bob against the exact solution over `[0, t_end]`,
 /// checked after every step: `max(|u − u*|, |u' − u*'|/ω)`.
+#[allow(dead_code)] // not every test binary runs the oscillator
 pub fn oscillator_error(
     integrator: &mut dyn Integrator,
     oscillator: &Oscillator,
@@ -36,4 +39,33 @@ pub fn log_log_slope(xs: &[f64], ys: &[f64]) -> f64 {
     let cov: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
     let var: f64 = lx.iter().map(|x| (x - mx) * (x - mx)).sum();
     cov / var
+}
+
+/// The backward-Euler system `(A, b)` of one linearised step of `h` from
+/// `state` (compressed springs clamped, directions frozen), with its
+/// block-Jacobi preconditioner.
+#[allow(dead_code)] // only the linear-solver tests assemble systems
+pub fn linearised_step(
+    system: &System,
+    state: &State,
+    h: f64,
+) -> (BlockMatrix, Vec<Vec3>, BlockJacobi) {
+    let n = system.particle_count();
+    let mut a = BlockMatrix::zeros(Pattern::new(system).unwrap());
+    let mut b = vec![Vec3::zeros(); n];
+    let mut jacobi = BlockJacobi::default();
+    let u: Vec<Vec3> = state.velocities().iter().map(|v| h * v).collect();
+    let lin = Linearization {
+        positions: state.positions(),
+        velocities: state.velocities(),
+        displacement: Some(&u),
+        inertia: &vec![Vec3::zeros(); n],
+        beta_h: h,
+        compressed: CompressedSprings::Clamped,
+        freeze_directions: true,
+    };
+    Assembler::default()
+        .assemble(system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+        .unwrap();
+    (a, b, jacobi)
 }
