@@ -42,7 +42,8 @@ use crate::amg::csr::Csr;
 /// velocity (at rest for plain pins), and their springs' terms move to the
 /// right-hand side. Gravity is the external force; spring and air damping
 /// are not part of this scheme (the paper damps separately) and are left
-/// out, as are obstacles.
+/// out. Obstacles are not part of the solve either: contacts are resolved
+/// after each step, as for the explicit methods ([`System::end_step`]).
 #[derive(Debug)]
 pub struct FastMassSpring {
     iterations: usize,
