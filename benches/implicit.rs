@@ -3,12 +3,8 @@
 //! pattern build, value refill (assembly), matrix-vector product (the block
 //! storage against faer's scalar compressed columns), one PCG solve,
 //! Cholesky numeric factorization and solve, and one full backward-Euler
-//! step; a STREAM triad, so the product's bandwidth can be read as a
-//! fraction of the machine's; and the default scene's first second under
-//! its own integrator, converged, against the same integrator taking Baraff
-//! & Witkin's linearised step (`default-scene/converged`,
-//! `default-scene/linearized`; the time per step is the reported time over
-//! the steps of that second).
+//! step; and a STREAM triad, so the product's bandwidth can be read as a
+//! fraction of the machine's.
 //!
 //! Run with `cargo bench --bench implicit`; `benches/README.md` has the
 //! measured table. The PCG iteration counts are printed as the benchmark
@@ -293,45 +289,12 @@ fn full_step(c: &mut Criterion) {
     group.finish();
 }
 
-/// The default scene's first simulated second, from its initial state,
-/// with its own integrator and with the same integrator linearised.
-fn default_scene(c: &mut Criterion) {
-    let scene = builtin::load("stiff-cloth").unwrap();
-    let steps = (1.0 / scene.timing.dt).round() as usize;
-    let mut linearized = scene.integrator;
-    let IntegratorSpec::Implicit {
-        linearized: flag, ..
-    } = &mut linearized
-    else {
-        panic!("the default scene is implicit");
-    };
-    *flag = true;
-    let mut group = c.benchmark_group("default-scene");
-    group.sample_size(10);
-    for (label, spec) in [("converged", scene.integrator), ("linearized", linearized)] {
-        group.bench_function(BenchmarkId::new(label, steps), |b| {
-            b.iter(|| {
-                let mut integrator = spec.build().unwrap();
-                let mut state = scene.system.initial_state();
-                for _ in 0..steps {
-                    integrator
-                        .step(&scene.system, &mut state, scene.timing.dt)
-                        .unwrap();
-                }
-                state
-            });
-        });
-    }
-    group.finish();
-}
-
 criterion_group!(
     benches,
     stream,
     pattern_and_refill,
     products,
     solves,
-    full_step,
-    default_scene
+    full_step
 );
 criterion_main!(benches);
