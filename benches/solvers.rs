@@ -9,11 +9,13 @@
 //! - `solve`: one solve as a Newton iteration pays it (Cholesky: refill,
 //!   numeric factorization and solve; multigrid: the refresh of every
 //!   level's values and PCG; block-Jacobi: PCG);
-//! - `step` (a converged step of this cloth takes from 8 Newton solves at
-//!   50² to over a hundred at 100²): one converged backward-Euler
-//!   step of the integrator, the hierarchy or factor kept from the steps
-//!   before, and one step of Liu et al.'s fast mass-spring method (10
-//!   iterations).
+//! - `step` (a converged step of this cloth takes 8 linear solves at 50²
+//!   and 80 at 100²): one converged backward-Euler step of the
+//!   integrator, the hierarchy or factor kept from the steps before, and
+//!   Liu et al.'s fast mass-spring step with 10 iterations;
+//! - `equal-accuracy`: on the cloth without spring damping, the converged
+//!   step against the fast mass-spring step with as many iterations as it
+//!   needs to be as accurate (up to 65 536).
 //!
 //! The sides come from `HOOKE_SOLVER_SIDES` (comma-separated, default
 //! `50,100,200,400,1000`) and, for `step`, `HOOKE_STEP_SIDES` (default
@@ -24,7 +26,10 @@
 
 use std::hint::black_box;
 
-use criterion::{BatchSize, BenchmarkId, Criterion, criterion_group, criterion_main};
+use criterion::measurement::WallTime;
+use criterion::{
+    BatchSize, BenchmarkGroup, BenchmarkId, Criterion, criterion_group, criterion_main,
+};
 use hooke::core::CompressedSprings;
 use hooke::implicit::{
     Amg, AmgSettings, Assembler, BlockJacobi, BlockMatrix, FastMassSpring, Filter, Implicit,
@@ -34,6 +39,9 @@ use hooke::prelude::*;
 use hooke::scenes::{Corner, Mass, Springs};
 
 const H: f64 = 1.0 / 60.0;
+
+/// The damping of the stretch and shear springs, N·s/m.
+const DAMPING: f64 = 0.05;
 
 /// The sides in the environment variable `name` (comma-separated), or
 /// `default`.
@@ -49,12 +57,13 @@ fn sides(name: &str, default: &[usize]) -> Vec<usize> {
     )
 }
 
-/// The cloth of `n`×`n` particles.
-fn cloth(n: usize) -> System {
+/// The cloth of `n`×`n` particles, its stretch and shear springs
+/// damped by `damping` (N·s/m).
+fn cloth(n: usize, damping: f64) -> System {
     Cloth::grid(n, n)
         .mass(Mass::Total(1.0))
-        .stretch(Springs::per_spring(5000.0).damping(0.05))
-        .shear(Springs::per_spring(500.0).damping(0.05))
+        .stretch(Springs::per_spring(5000.0).damping(damping))
+        .shear(Springs::per_spring(500.0).damping(damping))
         .bend(Springs::per_spring(50.0))
         .pin_corners([Corner::TopLeft, Corner::TopRight])
         .build()
@@ -121,7 +130,7 @@ fn linear(c: &mut Criterion) {
     setup.sample_size(10);
     let mut cases = Vec::new();
     for n in sides("HOOKE_SOLVER_SIDES", &[50, 100, 200, 400, 1000]) {
-        let system = cloth(n);
+        let system = cloth(n, DAMPING);
         let state = wavy(&system);
         let s = step_system(&system, &state);
         if n <= 400 {
@@ -218,25 +227,116 @@ fn linear(c: &mut Criterion) {
     solve.finish();
 }
 
+/// The largest distance between the particles of two states.
+fn distance(a: &State, b: &State) -> f64 {
+    a.positions()
+        .iter()
+        .zip(b.positions())
+        .map(|(p, q)| (p - q).norm())
+        .fold(0.0, f64::max)
+}
+
+/// The fewest iterations (to within an eighth) with which Liu et al.'s
+/// step from `start` comes within `target` of `reference`: doubling, then
+/// bisection.
+fn iterations_to_reach(
+    system: &System,
+    start: &State,
+    reference: &State,
+    target: f64,
+) -> Option<usize> {
+    let reaches = |iterations: usize| {
+        let mut state = start.clone();
+        FastMassSpring::new(iterations)
+            .unwrap()
+            .step(system, &mut state, H)
+            .unwrap();
+        distance(&state, reference) <= target
+    };
+    let mut high = FastMassSpring::ITERATIONS;
+    while !reaches(high) {
+        high *= 2;
+        if high > 1 << 16 {
+            return None;
+        }
+    }
+    let mut low = high / 2;
+    while high - low > high / 8 {
+        let middle = (low + high) / 2;
+        if reaches(middle) {
+            high = middle;
+        } else {
+            low = middle;
+        }
+    }
+    Some(high)
+}
+
+/// The cloth after ten converged steps from rest, swinging from its pins.
+fn swinging(system: &System) -> State {
+    let mut state = system.initial_state();
+    let mut warm_up = Implicit::backward_euler();
+    for _ in 0..10 {
+        warm_up.step(system, &mut state, H).unwrap();
+    }
+    state
+}
+
+/// Benchmarks one step of `integrator` from `start`, printing its report
+/// and its distance to `reference`.
+fn bench_step(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    (name, n): (&str, usize),
+    system: &System,
+    (start, reference): (&State, &State),
+    integrator: &mut dyn Integrator,
+) {
+    let mut state = start.clone();
+    let report = integrator.step(system, &mut state, H).unwrap();
+    eprintln!(
+        "{name} {n}²: {} ({} Newton iterations, {} linear solves, {} linear iterations), {:.1e} m from the reference",
+        report.linear_solver,
+        report.newton_iterations,
+        report.linear_solves,
+        report.linear_iterations,
+        distance(&state, reference)
+    );
+    group.bench_with_input(BenchmarkId::new(name, n), &n, |b, _| {
+        b.iter_batched_ref(
+            || start.clone(),
+            |state| black_box(integrator.step(system, state, H).unwrap()),
+            BatchSize::LargeInput,
+        );
+    });
+}
+
+/// The step tightly converged (`ε = 10⁻⁹`) from `start`.
+fn reference_step(system: &System, start: &State, n: usize) -> State {
+    let mut reference = start.clone();
+    let report = Implicit::backward_euler()
+        .with_newton(Implicit::NEWTON_ITERATIONS, 1e-9)
+        .unwrap()
+        .step(system, &mut reference, H)
+        .unwrap();
+    eprintln!(
+        "reference {n}²: converged to ε = 1e-9 in {} Newton iterations, {} substep(s)",
+        report.newton_iterations, report.accepted_steps
+    );
+    reference
+}
+
 /// One converged backward-Euler step of the cloth swinging from its pins
 /// (after ten steps from rest), the integrator (and its factor or
-/// hierarchy) kept across samples; and the step of Liu et al.'s
-/// fast mass-spring method with its 10 local/global iterations, whose
-/// distance to the converged step is printed.
+/// hierarchy) kept across samples, and one step of Liu et al.'s fast
+/// mass-spring method with its 10 local/global iterations; each one's
+/// distance to the tightly converged step is printed.
 fn steps(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
     group.sample_size(10);
     for n in sides("HOOKE_STEP_SIDES", &[50, 100]) {
-        let system = cloth(n);
-        let mut start = system.initial_state();
-        let mut warm_up = Implicit::backward_euler();
-        for _ in 0..10 {
-            warm_up.step(&system, &mut start, H).unwrap();
-        }
-        let mut converged = start.clone();
-        Implicit::backward_euler()
-            .step(&system, &mut converged, H)
-            .unwrap();
+        let system = cloth(n, DAMPING);
+        let start = swinging(&system);
+        let reference = reference_step(&system, &start, n);
         let mut integrators: Vec<(&str, Box<dyn Integrator>)> =
             vec![("fast-mass-spring-10", Box::new(FastMassSpring::default()))];
         if n <= 100 {
@@ -252,29 +352,57 @@ fn steps(c: &mut Criterion) {
             }
         }
         for (name, mut integrator) in integrators {
-            let mut state = start.clone();
-            let report = integrator.step(&system, &mut state, H).unwrap();
-            let distance = state
-                .positions()
-                .iter()
-                .zip(converged.positions())
-                .map(|(p, q)| (p - q).norm())
-                .fold(0.0, f64::max);
-            eprintln!(
-                "step {name} {n}²: {} ({} Newton iterations, {} linear iterations), {distance:.1e} m from the converged step",
-                report.linear_solver, report.newton_iterations, report.linear_iterations
+            bench_step(
+                &mut group,
+                (name, n),
+                &system,
+                (&start, &reference),
+                integrator.as_mut(),
             );
-            group.bench_with_input(BenchmarkId::new(name, n), &n, |b, _| {
-                b.iter_batched_ref(
-                    || start.clone(),
-                    |state| black_box(integrator.step(&system, state, H).unwrap()),
-                    BatchSize::LargeInput,
-                );
-            });
         }
     }
     group.finish();
 }
 
-criterion_group!(benches, linear, steps);
+/// Equal accuracy: on the cloth without spring damping (which Liu et
+/// al.'s method leaves out, so that with it the method converges to
+/// another step), one converged backward-Euler step at the defaults, and
+/// one step of the fast mass-spring method with as many iterations as it
+/// needs to come as close to the tightly converged step.
+fn equal_accuracy(c: &mut Criterion) {
+    let mut group = c.benchmark_group("equal-accuracy");
+    group.sample_size(10);
+    for n in sides("HOOKE_STEP_SIDES", &[50, 100]) {
+        let system = cloth(n, 0.0);
+        let start = swinging(&system);
+        let reference = reference_step(&system, &start, n);
+        let mut converged = start.clone();
+        Implicit::backward_euler()
+            .step(&system, &mut converged, H)
+            .unwrap();
+        let target = distance(&converged, &reference);
+        bench_step(
+            &mut group,
+            ("backward-euler", n),
+            &system,
+            (&start, &reference),
+            &mut Implicit::backward_euler(),
+        );
+        match iterations_to_reach(&system, &start, &reference, target) {
+            Some(iterations) => bench_step(
+                &mut group,
+                (&format!("fast-mass-spring-{iterations}"), n),
+                &system,
+                (&start, &reference),
+                &mut FastMassSpring::new(iterations).unwrap(),
+            ),
+            None => eprintln!(
+                "fast mass-spring {n}²: not within {target:.1e} m of the reference in 65 536 iterations"
+            ),
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, linear, steps, equal_accuracy);
 criterion_main!(benches);
