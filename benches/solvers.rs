@@ -11,8 +11,10 @@
 //!   level's values and PCG; block-Jacobi: PCG);
 //! - `step` (a converged step of this cloth takes 8 linear solves at 50²
 //!   and 80 at 100²): one converged backward-Euler step of the
-//!   integrator, the hierarchy or factor kept from the steps before, and
-//!   Liu et al.'s fast mass-spring step with 10 iterations;
+//!   integrator, the hierarchy or factor kept from the steps before (with
+//!   multigrid also with every Newton step solved to PCG's own tolerance,
+//!   `amg-exact-solves`, against the default inexact Newton), and Liu et
+//!   al.'s fast mass-spring step with 10 iterations;
 //! - `equal-accuracy`: on the cloth without spring damping, the converged
 //!   step against the fast mass-spring step with as many iterations as it
 //!   needs to be as accurate (up to 65 536).
@@ -361,6 +363,14 @@ fn steps(c: &mut Criterion) {
                     Box::new(Implicit::backward_euler().with_solver(solver)),
                 ));
             }
+            integrators.push((
+                "amg-exact-solves",
+                Box::new(
+                    Implicit::backward_euler()
+                        .with_solver(LinearSolver::Amg(PcgSettings::default()))
+                        .with_inexact_newton(false),
+                ),
+            ));
         }
         for (name, mut integrator) in integrators {
             bench_step(

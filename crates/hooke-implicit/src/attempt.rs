@@ -125,6 +125,7 @@ impl Implicit {
             system,
             strict,
             time,
+            forcing: 0.0,
         };
         let contacts = &mut self.contacts;
         let constrained = (!system.obstacles().is_empty() || !system.pin_paths().is_empty())
@@ -184,6 +185,7 @@ impl Implicit {
             b,
             pcg,
             report,
+            inexact: self.inexact_newton,
         };
         let outcome = if self.linearized {
             newton::Outcome {

@@ -99,6 +99,16 @@ impl PcgSettings {
         self.tolerance
     }
 
+    /// These settings with the tolerance raised to `forcing` where that is
+    /// looser (an inexact Newton iteration's forcing term; `0` keeps them).
+    #[must_use]
+    pub(crate) fn loosened(self, forcing: f64) -> Self {
+        Self {
+            tolerance: self.tolerance.max(forcing),
+            ..self
+        }
+    }
+
     /// The iteration cap.
     #[must_use]
     pub fn max_iterations(&self) -> usize {

@@ -71,6 +71,11 @@ pub enum Scheme {
 /// `Φ` itself — the precision floor that springs of 10¹² N/m reach, whose
 /// forces carry `k` times the rounding of their ends' coordinates.
 ///
+/// With an iterative linear solver the Newton steps are solved inexactly,
+/// to the relative residual `η = min(0.1, ½ λ_rel)` of the last relative
+/// decrement where that is looser than the solver's own tolerance (an
+/// inexact Newton iteration; [`Implicit::with_inexact_newton`]).
+///
 /// # Substeps: conditioning, rejection and the energy test
 ///
 /// The step's matrix has condition number relative to `M` of at most
@@ -149,6 +154,7 @@ pub struct Implicit {
     pub(crate) linearized: bool,
     pub(crate) newton_iterations: usize,
     pub(crate) newton_tolerance: f64,
+    pub(crate) inexact_newton: bool,
     pub(crate) max_halvings: u32,
     pub(crate) strict: bool,
     pub(crate) compressed: CompressedSprings,
@@ -246,6 +252,7 @@ impl Implicit {
             linearized: false,
             newton_iterations: Self::NEWTON_ITERATIONS,
             newton_tolerance: Self::NEWTON_TOLERANCE,
+            inexact_newton: true,
             max_halvings: Self::MAX_HALVINGS,
             strict: false,
             compressed: CompressedSprings::Clamped,
@@ -272,6 +279,23 @@ impl Implicit {
     pub fn with_solver(mut self, solver: LinearSolver) -> Self {
         self.solver = solver;
         self.topology = None;
+        self
+    }
+
+    /// Whether an iterative linear solver (PCG, multigrid, lagged
+    /// Cholesky) may stop a Newton step's solve at the forcing term
+    /// `η = min(0.1, ½ λ_rel)` of the last relative Newton decrement `λ_rel`
+    /// when that is looser than its own tolerance (the default, `true`: an
+    /// inexact Newton iteration, Eisenstat & Walker 1996), or always solves
+    /// to its own tolerance (`false`). The first, linearised solve of a step
+    /// and direct solves are exact either way.
+    ///
+    /// ```
+    /// let exact = hooke_implicit::Implicit::backward_euler().with_inexact_newton(false);
+    /// ```
+    #[must_use]
+    pub fn with_inexact_newton(mut self, inexact: bool) -> Self {
+        self.inexact_newton = inexact;
         self
     }
 

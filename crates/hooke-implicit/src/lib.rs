@@ -23,7 +23,8 @@
 //!    `Φ`, every iterate accepted through a line search that lowers `Φ`,
 //!    stopped by a scale-free rule on the Newton decrement (default
 //!    relative [`Implicit::NEWTON_TOLERANCE`], at most
-//!    [`Implicit::NEWTON_ITERATIONS`] solves).
+//!    [`Implicit::NEWTON_ITERATIONS`] solves); iterative solves stop at a
+//!    forcing term that tightens with the decrement (inexact Newton).
 //! 4. **Acceptance**: a step that does not converge, or a backward-Euler
 //!    step that gains energy beyond the work of external forces, is
 //!    rejected and retried as halved substeps, growing back afterwards;

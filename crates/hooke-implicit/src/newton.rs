@@ -19,6 +19,23 @@ const MAX_EXTRAPOLATION: f64 = 64.0;
 /// The shortest fraction of a Newton step the line search tries.
 const MIN_STEP: f64 = 1e-6;
 
+/// The loosest relative residual an iterative solve of a Newton step may
+/// stop at (the forcing term before the first decrement is known).
+const MAX_FORCING: f64 = 0.1;
+
+/// The forcing term of an inexact Newton iteration whose last relative
+/// decrement was `last`: `η = min(0.1, ½ last)`, so that the linear solves
+/// are loose while Newton is far from the answer and tighten with it
+/// (Eisenstat & Walker, *Choosing the forcing terms in an inexact Newton
+/// method*, 1996).
+fn forcing(last: f64) -> f64 {
+    if last.is_finite() {
+        (0.5 * last).min(MAX_FORCING)
+    } else {
+        MAX_FORCING
+    }
+}
+
 /// How Newton's method ended.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Outcome {
@@ -60,6 +77,8 @@ pub(crate) struct Newton<'a> {
     pub(crate) b: &'a mut [Vec3],
     pub(crate) pcg: &'a mut crate::cg::PcgWorkspace,
     pub(crate) report: &'a mut StepReport,
+    /// Whether iterative solves stop at the forcing term ([`forcing`]).
+    pub(crate) inexact: bool,
 }
 
 impl Newton<'_> {
@@ -227,6 +246,13 @@ impl Newton<'_> {
     /// - otherwise the step backtracks by halves. A line search that finds
     ///   no decrease down to `α = 10⁻⁶` ends the iteration unconverged.
     ///
+    /// With `inexact`, an iterative linear solver stops each Newton step at
+    /// the relative residual `η = min(0.1, ½ λ_rel)` of the last relative
+    /// decrement ([`forcing`]) when that is looser than its own tolerance.
+    /// CG started from zero gives a descent direction at every iteration,
+    /// so a loose step still descends, and the stopping rule is checked on
+    /// steps solved to a fraction of the decrement itself.
+    ///
     /// # Errors
     /// Assembly and solver errors.
     pub(crate) fn minimize(
@@ -244,6 +270,9 @@ impl Newton<'_> {
             residual: f64::INFINITY,
         };
         while outcome.iterations < max_iterations {
+            if self.inexact {
+                self.solve.forcing = forcing(outcome.residual);
+            }
             let slope = self.direction(it.v, it.delta, true)?;
             outcome.iterations += 1;
             if self.constrained {

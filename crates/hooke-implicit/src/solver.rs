@@ -255,6 +255,9 @@ pub(crate) struct Solve<'a> {
     pub(crate) system: &'a System,
     pub(crate) strict: bool,
     pub(crate) time: f64,
+    /// The relative residual an iterative solve may stop at when that is
+    /// looser than its settings' (Newton's forcing term; `0` for none).
+    pub(crate) forcing: f64,
 }
 
 impl Solve<'_> {
@@ -290,7 +293,12 @@ impl Solve<'_> {
         workspace: &mut PcgWorkspace,
         report: &mut StepReport,
     ) -> Result<(), StepError> {
-        let Self { strict, time, .. } = self;
+        let Self {
+            strict,
+            time,
+            forcing,
+            ..
+        } = self;
         let Topology {
             matrix,
             jacobi,
@@ -331,6 +339,7 @@ impl Solve<'_> {
         };
         match *solver {
             Choice::Pcg(settings) => {
+                let settings = settings.loosened(forcing);
                 pcg(
                     cg::solve(matrix, jacobi, filters, b, x, settings, workspace),
                     report,
@@ -375,11 +384,15 @@ impl Solve<'_> {
                     ),
                 };
                 let cycle = hierarchy.cycle(matrix, filters);
+                let loosened = settings.loosened(forcing);
                 let info = pcg(
-                    cg::solve(matrix, &cycle, filters, b, x, settings, workspace),
+                    cg::solve(matrix, &cycle, filters, b, x, loosened, workspace),
                     report,
                 )?;
-                amg.after(renewal, info.iterations);
+                // CG's iterations grow like the logarithm of the tolerance:
+                // a loosened solve's count is scaled to the settings' one.
+                let scale = settings.tolerance().ln() / loosened.tolerance().ln();
+                amg.after(renewal, (info.iterations as f64 * scale).ceil() as usize);
             }
             Choice::Lagged(settings) => {
                 let factor = cholesky
@@ -398,7 +411,7 @@ impl Solve<'_> {
                         filters,
                         b,
                         x,
-                        settings,
+                        settings.loosened(forcing),
                         workspace,
                     ),
                     report,
