@@ -20,6 +20,10 @@ use hooke::implicit::{
 };
 use hooke::prelude::*;
 
+#[allow(dead_code)] // the benches use a few of the tests' helpers
+#[path = "../tests/common/mod.rs"]
+mod common;
+
 const H: f64 = 1.0 / 30.0;
 const SIDES: [usize; 4] = [32, 64, 128, 256];
 const STIFFNESS: [(&str, f64); 2] = [("soft", 1e2), ("stiff", 1e6)];
@@ -85,23 +89,13 @@ fn assemble(system: &System, state: &State, assembler: &mut Assembler, out: &mut
 }
 
 fn assembled(system: &System, state: &State) -> Assembled {
-    let n = system.particle_count();
-    let mut out = Assembled {
-        matrix: BlockMatrix::zeros(Pattern::new(system).unwrap()),
-        jacobi: BlockJacobi::default(),
-        rhs: vec![Vec3::zeros(); n],
-        filters: (0..n)
-            .map(|i| {
-                if system.is_pinned(i) {
-                    Filter::Fixed
-                } else {
-                    Filter::Free
-                }
-            })
-            .collect(),
-    };
-    assemble(system, state, &mut Assembler::default(), &mut out);
-    out
+    let (matrix, rhs, jacobi) = common::linearised_step(system, state, H);
+    Assembled {
+        matrix,
+        jacobi,
+        rhs,
+        filters: common::pin_filters(system),
+    }
 }
 
 /// Bytes a product must move at least: per particle its mass term, row

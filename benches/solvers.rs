@@ -33,13 +33,16 @@ use criterion::measurement::WallTime;
 use criterion::{
     BatchSize, BenchmarkGroup, BenchmarkId, Criterion, criterion_group, criterion_main,
 };
-use hooke::core::CompressedSprings;
 use hooke::implicit::{
-    Amg, AmgSettings, Assembler, BlockJacobi, BlockMatrix, FastMassSpring, Filter, Implicit,
-    LinearSolver, Linearization, Pattern, PcgSettings, SparseCholesky, cg,
+    Amg, AmgSettings, BlockJacobi, BlockMatrix, FastMassSpring, Filter, Implicit, LinearSolver,
+    PcgSettings, SparseCholesky, cg,
 };
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Mass, Springs};
+
+#[allow(dead_code)] // the benches use a few of the tests' helpers
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 const H: f64 = 1.0 / 60.0;
 
@@ -84,7 +87,8 @@ fn wavy(system: &System) -> State {
     state
 }
 
-/// The backward-Euler system of one linearised step.
+/// The backward-Euler system of one linearised step, with its pins'
+/// filters.
 struct Step {
     a: BlockMatrix,
     jacobi: BlockJacobi,
@@ -93,35 +97,13 @@ struct Step {
 }
 
 fn step_system(system: &System, state: &State) -> Step {
-    let n = system.particle_count();
-    let mut out = Step {
-        a: BlockMatrix::zeros(Pattern::new(system).unwrap()),
-        jacobi: BlockJacobi::default(),
-        b: vec![Vec3::zeros(); n],
-        filters: (0..n)
-            .map(|i| {
-                if system.is_pinned(i) {
-                    Filter::Fixed
-                } else {
-                    Filter::Free
-                }
-            })
-            .collect(),
-    };
-    let u: Vec<Vec3> = state.velocities().iter().map(|v| H * v).collect();
-    let lin = Linearization {
-        positions: state.positions(),
-        velocities: state.velocities(),
-        displacement: Some(&u),
-        inertia: &vec![Vec3::zeros(); n],
-        beta_h: H,
-        compressed: CompressedSprings::Clamped,
-        freeze_directions: true,
-    };
-    Assembler::default()
-        .assemble(system, &lin, &mut out.a, &mut out.jacobi, &mut out.b, 0.0)
-        .unwrap();
-    out
+    let (a, b, jacobi) = common::linearised_step(system, state, H);
+    Step {
+        a,
+        jacobi,
+        b,
+        filters: common::pin_filters(system),
+    }
 }
 
 fn settings() -> PcgSettings {

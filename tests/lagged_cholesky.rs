@@ -3,9 +3,7 @@
 //! factorization on a later one, and the integrator's steps with it match
 //! plain Cholesky's.
 
-use hooke::implicit::{
-    BlockMatrix, Filter, Implicit, LinearSolver, PcgSettings, SparseCholesky, cg,
-};
+use hooke::implicit::{BlockMatrix, Implicit, LinearSolver, PcgSettings, SparseCholesky, cg};
 use hooke::prelude::*;
 
 mod common;
@@ -26,15 +24,7 @@ fn a_lagged_factor_preconditions_a_later_matrix() {
     for _ in 0..5 {
         integrator.step(&system, &mut state, H).unwrap();
     }
-    let filters: Vec<Filter> = (0..system.particle_count())
-        .map(|i| {
-            if system.is_pinned(i) {
-                Filter::Fixed
-            } else {
-                Filter::Free
-            }
-        })
-        .collect();
+    let filters = common::pin_filters(&system);
     let (a0, b0, _) = common::linearised_step(&system, &state, H);
     let mut factor = SparseCholesky::new(&a0).unwrap();
     factor.factorize(&a0, &filters).unwrap();

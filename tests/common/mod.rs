@@ -1,7 +1,8 @@
-//! Helpers shared by the integration tests.
+//! Helpers shared by the integration tests and the benches (which include
+//! this file by its path).
 
 use hooke::core::CompressedSprings;
-use hooke::implicit::{Assembler, BlockJacobi, BlockMatrix, Linearization, Pattern};
+use hooke::implicit::{Assembler, BlockJacobi, BlockMatrix, Filter, Linearization, Pattern};
 use hooke::prelude::*;
 
 /// Largest error of the bob against the exact solution over `[0, t_end]`,
@@ -68,4 +69,19 @@ pub fn linearised_step(
         .assemble(system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
         .unwrap();
     (a, b, jacobi)
+}
+
+/// The constraint filters of `system`'s pins: `Fixed` for a pinned
+/// particle, `Free` otherwise.
+#[allow(dead_code)] // only the linear-solver tests and benches filter
+pub fn pin_filters(system: &System) -> Vec<Filter> {
+    (0..system.particle_count())
+        .map(|i| {
+            if system.is_pinned(i) {
+                Filter::Fixed
+            } else {
+                Filter::Free
+            }
+        })
+        .collect()
 }
