@@ -10,14 +10,17 @@
 //!   numeric factorization and solve; multigrid: the refresh of every
 //!   level's values and PCG; block-Jacobi: PCG);
 //! - `step` (a converged step of this cloth takes 8 linear solves at 50²
-//!   and 80 at 100²): one converged backward-Euler step of the
-//!   integrator, the hierarchy or factor kept from the steps before (with
-//!   multigrid also with every Newton step solved to PCG's own tolerance,
-//!   `amg-exact-solves`, against the default inexact Newton), and Liu et
-//!   al.'s fast mass-spring step with 10 iterations;
+//!   and about 26 at 100²): one converged backward-Euler step of the
+//!   integrator, the hierarchy or factor kept from the steps before, with
+//!   each solver and `auto` (up to 200²; at 100² also multigrid with every
+//!   Newton step solved to PCG's own tolerance, `amg-exact-solves`, against
+//!   the default inexact Newton), and Liu et al.'s fast mass-spring step
+//!   with 10 iterations;
 //! - `equal-accuracy`: on the cloth without spring damping, the converged
 //!   step against the fast mass-spring step with as many iterations as it
-//!   needs to be as accurate (up to 65 536).
+//!   needs to be as accurate (up to 65 536);
+//! - `scene-step`: converged steps of a rope and a tetrahedral lattice with
+//!   each solver and `auto`, whose best choice is not the cloth's.
 //!
 //! The sides come from `HOOKE_SOLVER_SIDES` (comma-separated, default
 //! `50,100,200,400,1000`) and, for `step`, `HOOKE_STEP_SIDES` (default
@@ -334,17 +337,20 @@ fn steps(c: &mut Criterion) {
         let reference = reference_step(&system, &start, n);
         let mut integrators: Vec<(&str, Box<dyn Integrator>)> =
             vec![("fast-mass-spring-10", Box::new(FastMassSpring::default()))];
-        if n <= 100 {
+        if n <= 200 {
             for (name, solver) in [
                 ("auto", LinearSolver::Auto),
                 ("cholesky", LinearSolver::Cholesky),
                 ("amg", LinearSolver::Amg(PcgSettings::default())),
+                ("pcg", LinearSolver::Pcg(PcgSettings::default())),
             ] {
                 integrators.push((
                     name,
                     Box::new(Implicit::backward_euler().with_solver(solver)),
                 ));
             }
+        }
+        if n <= 100 {
             integrators.push((
                 "amg-exact-solves",
                 Box::new(
@@ -408,5 +414,55 @@ fn equal_accuracy(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, linear, steps, equal_accuracy);
+/// The rope of 10 001 particles ([`common::long_rope`]) at `h = 1/60 s` and
+/// the tetrahedral cube of 17³ particles ([`common::tet_cube`]) at
+/// `h = 1/240 s`.
+fn other_scenes() -> [(&'static str, System, f64); 2] {
+    [
+        ("rope", common::long_rope(10_000), H),
+        ("tets", common::tet_cube(16), 1.0 / 240.0),
+    ]
+}
+
+/// `auto` off the cloth: one converged step of the rope and of the
+/// tetrahedral lattice ([`other_scenes`]) three steps after release, with
+/// each solver and with `auto`.
+fn other_scene_steps(c: &mut Criterion) {
+    let mut group = c.benchmark_group("scene-step");
+    group.sample_size(10);
+    for (scene, system, h) in other_scenes() {
+        let mut start = system.initial_state();
+        let mut warm_up = Implicit::backward_euler().with_solver(LinearSolver::Cholesky);
+        for _ in 0..3 {
+            warm_up.step(&system, &mut start, h).unwrap();
+        }
+        for (name, solver) in [
+            ("auto", LinearSolver::Auto),
+            ("cholesky", LinearSolver::Cholesky),
+            ("amg", LinearSolver::Amg(PcgSettings::default())),
+            ("pcg", LinearSolver::Pcg(PcgSettings::default())),
+        ] {
+            let mut integrator = Implicit::backward_euler().with_solver(solver);
+            let mut state = start.clone();
+            let report = integrator.step(&system, &mut state, h).unwrap();
+            eprintln!(
+                "{scene} {name}: {} ({} Newton iterations, {} linear solves, {} linear iterations)",
+                report.linear_solver,
+                report.newton_iterations,
+                report.linear_solves,
+                report.linear_iterations,
+            );
+            group.bench_function(BenchmarkId::new(name, scene), |b| {
+                b.iter_batched_ref(
+                    || start.clone(),
+                    |state| black_box(integrator.step(&system, state, h).unwrap()),
+                    BatchSize::LargeInput,
+                );
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, linear, steps, equal_accuracy, other_scene_steps);
 criterion_main!(benches);

@@ -1,7 +1,8 @@
 //! Memory of converged steps on a large cloth: the N×N cloth (1 m,
 //! 1 kg, stretch / shear / bend springs of 5 000 / 500 / 50 N/m, two
 //! corners pinned) takes converged backward-Euler steps of 1/60 s with the
-//! default solver (`auto`: multigrid PCG from 4 096 particles), then prints
+//! default solver (`auto`, which at a million particles skips the factor by
+//! its predicted size and times multigrid against block-Jacobi PCG), then prints
 //! per step the solver, Newton and linear iterations and wall time, and the
 //! process's peak resident memory (`VmHWM` of `/proc/self/status`) per
 //! particle.

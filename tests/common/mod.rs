@@ -4,6 +4,7 @@
 use hooke::core::CompressedSprings;
 use hooke::implicit::{Assembler, BlockJacobi, BlockMatrix, Filter, Linearization, Pattern};
 use hooke::prelude::*;
+use hooke::scenes::{Mass, Springs, TetSplit};
 
 /// Largest error of the bob against the exact solution over `[0, t_end]`,
 /// checked after every step: `max(|u − u*|, |u' − u*'|/ω)`.
@@ -84,4 +85,35 @@ pub fn pin_filters(system: &System) -> Vec<Filter> {
             }
         })
         .collect()
+}
+
+/// A rope of `segments + 1` particles, 10 m, 1 kg, stretch / bend springs of
+/// 10 000 / 100 N/m (stretch damped by 0.05 N·s/m), its start pinned.
+#[allow(dead_code)] // used by the multigrid tests and the solvers bench
+pub fn long_rope(segments: usize) -> System {
+    Rope::between([0.0, 0.0, 0.0], [10.0, 0.0, 0.0], segments)
+        .mass(Mass::Total(1.0))
+        .stretch(Springs::per_spring(1e4).damping(0.05))
+        .bend(Springs::per_spring(100.0))
+        .pin_start()
+        .build()
+        .unwrap()
+        .system([0.0, -9.81, 0.0])
+        .unwrap()
+}
+
+/// A 0.2 m cube of `cells`³ cubes split into six tetrahedra each
+/// (`(cells + 1)³` particles), 1 000 kg/m³, springs of modulus 2·10⁴ N on
+/// the edges (damped by 0.5 N·s/m), one corner pinned.
+#[allow(dead_code)] // used by the multigrid tests and the solvers bench
+pub fn tet_cube(cells: usize) -> System {
+    Lattice::tets(cells, cells, cells, TetSplit::Six)
+        .size([0.2, 0.2, 0.2])
+        .mass(Mass::Density(1000.0))
+        .edges(Springs::modulus(2e4).damping(0.5))
+        .pin(0)
+        .build()
+        .unwrap()
+        .system([0.0, -9.81, 0.0])
+        .unwrap()
 }

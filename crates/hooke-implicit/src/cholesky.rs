@@ -2,6 +2,7 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
     factorize_symbolic_cholesky,
@@ -15,6 +16,7 @@ use std::cell::RefCell;
 use crate::cg::Preconditioner;
 use crate::filter::Filter;
 use crate::matrix::BlockMatrix;
+use crate::pattern::Pattern;
 
 /// A direct solver for the filtered system
 ///
@@ -57,9 +59,14 @@ impl std::fmt::Debug for SparseCholesky {
     }
 }
 
-/// Particle count from which faer factorizes in parallel.
+/// Particle count from which faer factorizes in parallel. On the issue's
+/// cloth (`benches/solvers.rs`, 2 cores) faer's parallel factorization and
+/// solve took 438 ms against 366 ms sequentially at 40 000 particles, and
+/// 2.27 s against 2.63 s at 160 000; in converged steps of the falling
+/// cloth it took 170 ms against 92 ms at 4 096 particles and 749 ms
+/// against 411 ms at 10 000.
 #[cfg(feature = "parallel")]
-const PARALLEL_MIN_PARTICLES: usize = 4096;
+const PARALLEL_MIN_PARTICLES: usize = 100_000;
 
 impl SparseCholesky {
     /// The layout and symbolic factorization for matrices with the pattern of
@@ -250,6 +257,51 @@ impl Preconditioner for FactorPreconditioner<'_> {
     }
 }
 
+/// The number of scalar entries of the Cholesky factor of a matrix with
+/// `pattern`'s blocks, predicted without factorizing: the approximate
+/// minimum degree ordering of the particle graph (one node per particle, an
+/// edge per pair of particles a spring joins) counts the off-diagonal
+/// entries `f` of that graph's factor as it orders it, and the block
+/// factor has a 3x3 block for each (`9 f`) and the lower triangle of one per
+/// particle (`6 n`). [`SparseCholesky`] orders the scalar matrix, whose
+/// 3x3 blocks AMD finds again, so its factor has about this size. `None`
+/// if the graph does not fit 32-bit indices.
+pub(crate) fn predicted_factor_entries(pattern: &Pattern) -> Option<usize> {
+    let n = pattern.rows();
+    // Both triangles of the graph, each row's neighbours sorted (a system
+    // joins a pair of particles by one spring at most).
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for q in 0..n {
+        for t in pattern.upper(q) {
+            let p = pattern.column(t);
+            neighbours[q].push(u32::try_from(p).ok()?);
+            neighbours[p].push(u32::try_from(q).ok()?);
+        }
+    }
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    let mut row_idx = Vec::new();
+    col_ptr.push(0u32);
+    for row in &mut neighbours {
+        row.sort_unstable();
+        row_idx.extend_from_slice(row);
+        col_ptr.push(u32::try_from(row_idx.len()).ok()?);
+    }
+    drop(neighbours);
+    let graph = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
+    let (mut perm, mut perm_inv) = (vec![0u32; n], vec![0u32; n]);
+    let mut memory = MemBuffer::new(amd::order_scratch::<u32>(n, row_idx.len()));
+    let count = amd::order(
+        &mut perm,
+        &mut perm_inv,
+        graph,
+        amd::Control::default(),
+        MemStack::new(&mut memory),
+    )
+    .ok()?;
+    // AMD's division count is the factor's off-diagonal entry count.
+    Some(9 * count.n_div as usize + 6 * n)
+}
+
 /// Sequential for small systems, faer's rayon parallelism for large ones.
 #[cfg(feature = "parallel")]
 fn parallelism(particles: usize) -> Par {
@@ -264,4 +316,56 @@ fn parallelism(particles: usize) -> Par {
 #[cfg(not(feature = "parallel"))]
 fn parallelism(_particles: usize) -> Par {
     Par::Seq
+}
+
+#[cfg(test)]
+mod tests {
+    use hooke_core::SystemBuilder;
+    use hooke_core::reference::Sheet;
+
+    use super::*;
+
+    fn pattern(build: impl Fn(&mut SystemBuilder)) -> Pattern {
+        let mut builder = SystemBuilder::new();
+        build(&mut builder);
+        Pattern::new(&builder.build().unwrap()).unwrap()
+    }
+
+    /// Graphs whose fill is known: a chain and a star (its centre ordered
+    /// last) fill nothing, so their factors have the graph's `n − 1` edges.
+    #[test]
+    fn predicted_factor_of_graphs_without_fill() {
+        let n = 100;
+        let chain = pattern(|b| {
+            for i in 0..n {
+                b.particle(1.0, [i as f64, 0.0, 0.0]);
+            }
+            for i in 1..n {
+                b.spring(i - 1, i, 1.0);
+            }
+        });
+        let star = pattern(|b| {
+            b.particle(1.0, [0.0, 0.0, 0.0]);
+            for i in 1..n {
+                let angle = i as f64;
+                b.particle(1.0, [angle.cos(), angle.sin(), 0.0]);
+                b.spring(0, i, 1.0);
+            }
+        });
+        for p in [chain, star] {
+            assert_eq!(predicted_factor_entries(&p), Some(9 * (n - 1) + 6 * n));
+        }
+    }
+
+    /// On a cloth the prediction from the particle graph is within a factor
+    /// of two of the factor faer allocates for the scalar matrix.
+    #[test]
+    fn predicted_factor_of_a_cloth_is_about_faers() {
+        let system = Sheet::new(24).system().unwrap();
+        let a = BlockMatrix::zeros(Pattern::new(&system).unwrap());
+        let predicted = predicted_factor_entries(a.pattern()).unwrap() as f64;
+        let actual = SparseCholesky::new(&a).unwrap().factor.len() as f64;
+        let ratio = predicted / actual;
+        assert!((0.5..=2.0).contains(&ratio), "{predicted} against {actual}");
+    }
 }

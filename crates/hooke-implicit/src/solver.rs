@@ -1,13 +1,15 @@
 //! The linear solver of an implicit step: the choice, what it keeps per
 //! topology, and the assemble-and-solve path every Newton step takes.
 
+use std::time::{Duration, Instant};
+
 use hooke_core::{StepError, StepReport, System, Vec3};
 
 use crate::amg::{Amg, AmgError, AmgSettings};
 use crate::assembly::{Assembler, Linearization};
 use crate::block::SymBlock;
 use crate::cg::{self, BlockJacobi, PcgError, PcgInfo, PcgSettings, PcgWorkspace};
-use crate::cholesky::SparseCholesky;
+use crate::cholesky::{SparseCholesky, predicted_factor_entries};
 use crate::conditioning::Rates;
 use crate::filter::Filter;
 use crate::matrix::BlockMatrix;
@@ -45,13 +47,40 @@ pub enum LinearSolver {
     /// block-Jacobi takes 123, as springs turn and enter or leave the
     /// compressed clamp. [`LinearSolver::Auto`] does not choose it.
     LaggedCholesky(PcgSettings),
-    /// Chooses by the system's size: [`LinearSolver::Cholesky`] below
-    /// [`LinearSolver::AUTO_AMG_PARTICLES`] particles, where a factorization
-    /// costs less than building and cycling a hierarchy, and
-    /// [`LinearSolver::Amg`] with the default [`PcgSettings`] from there on,
-    /// where the factor's fill and time grow faster than the multigrid's
-    /// linear cost (and a million-particle factor would not fit in memory).
-    /// The choice is reported in [`StepReport::linear_solver`].
+    /// Chooses by measured cost. Below [`LinearSolver::AUTO_TRIAL_PARTICLES`]
+    /// particles it takes [`LinearSolver::Cholesky`]: there a factorization
+    /// costs less than a multigrid solve on every scene measured (a 40×40
+    /// cloth, tetrahedral lattices, ropes). From there on the first solve
+    /// starts with a trial: each candidate solves the step's matrix for the
+    /// same right-hand side, timed, and the fastest is kept for the rest of
+    /// the run — [`LinearSolver::Cholesky`] (refill, numeric factorization
+    /// and solve; skipped when the factor, predicted from the fill of an
+    /// approximate-minimum-degree ordering of the particle graph, would take
+    /// more than [`LinearSolver::AUTO_FACTOR_BYTES`]), [`LinearSolver::Amg`]
+    /// (the hierarchy's build is not timed, as it is kept across steps; the
+    /// smoother's refresh and the PCG solve are) and [`LinearSolver::Pcg`]
+    /// with block-Jacobi (capped at
+    /// [`LinearSolver::AUTO_TRIAL_PCG_ITERATIONS`] iterations, beyond which
+    /// it loses), each to the default [`PcgSettings`] tolerance. The choice
+    /// is reported in [`StepReport::linear_solver`]. As it rests on
+    /// timings it can differ between machines, and between runs where two
+    /// candidates cost about the same: a run that must be reproducible to
+    /// the last bit names its solver.
+    ///
+    /// Measured per converged step (`cargo bench --bench solvers --
+    /// scene-step`, `benches/README.md`): a rope of 10 001 particles steps
+    /// in 15 ms with the factor and 101 ms with multigrid; a tetrahedral
+    /// lattice of 4 913 particles at `h = 1/240 s` in 27 ms with
+    /// block-Jacobi PCG, 226 ms with the factor and 1.04 s with multigrid;
+    /// a rule by size alone cannot tell these apart, and `auto` keeps the
+    /// fastest on both. Where two candidates' solves cost about the same
+    /// the trial can keep the one that is slower per step: on the issue's
+    /// 200×200 cloth swinging from its pins it keeps the factor (11.3 s per
+    /// step) where multigrid takes 8.9 s, as multigrid's solves in a step
+    /// are inexact ([`Implicit::with_inexact_newton`](crate::Implicit::with_inexact_newton))
+    /// and cost less than the trial's exact one.
+    /// [`LinearSolver::LaggedCholesky`] is not a candidate: its worth shows
+    /// only over a run of changing matrices.
     Auto,
 }
 
@@ -60,8 +89,20 @@ impl LinearSolver {
     /// the next solve factorizes again.
     pub const LAGGED_REFACTOR_ITERATIONS: usize = 10;
 
-    /// The particle count from which [`LinearSolver::Auto`] takes multigrid.
-    pub const AUTO_AMG_PARTICLES: usize = 4096;
+    /// The particle count from which [`LinearSolver::Auto`] decides by a
+    /// trial.
+    pub const AUTO_TRIAL_PARTICLES: usize = 2048;
+
+    /// The largest predicted Cholesky factor, in bytes, that the trial of
+    /// [`LinearSolver::Auto`] factorizes: 1 GiB. The cloth
+    /// (`benches/solvers.rs`) has a predicted factor of 0.24 GB at 200×200
+    /// particles, 1.16 GB at 400×400 (where multigrid solves about as fast)
+    /// and 9.3 GB at 1000×1000.
+    pub const AUTO_FACTOR_BYTES: usize = 1 << 30;
+
+    /// The iterations a block-Jacobi PCG solve may take in the trial of
+    /// [`LinearSolver::Auto`].
+    pub const AUTO_TRIAL_PCG_ITERATIONS: usize = 300;
 
     /// The solver's name as the scene files and reports spell it: `"pcg"`,
     /// `"cholesky"`, `"amg"`, `"lagged-cholesky"` or `"auto"`.
@@ -77,25 +118,27 @@ impl LinearSolver {
     }
 }
 
-/// A solver as used: [`LinearSolver::Auto`] resolved.
+/// A solver as used: [`LinearSolver::Auto`] resolved, or to be resolved by
+/// the trial at the first solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Choice {
     Pcg(PcgSettings),
     Cholesky,
     Amg(PcgSettings),
     Lagged(PcgSettings),
+    Trial,
 }
 
 impl Choice {
-    /// `solver` for `system`: `Auto` by the system's size.
+    /// `solver` for `system`: `Auto` by its size, then by the trial.
     fn new(solver: LinearSolver, system: &System) -> Self {
         match solver {
             LinearSolver::Pcg(settings) => Self::Pcg(settings),
             LinearSolver::Cholesky => Self::Cholesky,
             LinearSolver::Amg(settings) => Self::Amg(settings),
             LinearSolver::LaggedCholesky(settings) => Self::Lagged(settings),
-            LinearSolver::Auto if system.particle_count() >= LinearSolver::AUTO_AMG_PARTICLES => {
-                Self::Amg(PcgSettings::default())
+            LinearSolver::Auto if system.particle_count() >= LinearSolver::AUTO_TRIAL_PARTICLES => {
+                Self::Trial
             }
             LinearSolver::Auto => Self::Cholesky,
         }
@@ -108,6 +151,7 @@ impl Choice {
             Self::Cholesky => "cholesky",
             Self::Amg(_) => "amg",
             Self::Lagged(_) => "lagged-cholesky",
+            Self::Trial => "auto",
         }
     }
 }
@@ -299,6 +343,9 @@ impl Solve<'_> {
             forcing,
             ..
         } = self;
+        if topology.solver == Choice::Trial {
+            topology.solver = trial(topology, positions, workspace, time)?;
+        }
         let Topology {
             matrix,
             jacobi,
@@ -421,6 +468,7 @@ impl Solve<'_> {
                 });
                 solved?;
             }
+            Choice::Trial => unreachable!("the trial resolved the choice above"),
             Choice::Cholesky => {
                 let factor = cholesky
                     .as_mut()
@@ -432,4 +480,120 @@ impl Solve<'_> {
         }
         Ok(())
     }
+}
+
+/// [`LinearSolver::Auto`]'s trial: solves the filtered system last
+/// assembled, `S A y = S r`, for a right-hand side `r` of pseudo-random
+/// components in `[−1, 1]` with each candidate, timing each solve, keeps
+/// what the fastest one built (the factor or the hierarchy) and returns
+/// it. A right-hand side of every frequency tries each preconditioner as
+/// the later Newton systems will, where the step's own one may be smooth
+/// (a cloth at rest under gravity) and flatter a preconditioner that only
+/// damps smooth errors.
+///
+/// # Errors
+/// [`StepError::NotPositiveDefinite`] when the factorization, or multigrid
+/// where the factor is not tried, finds the matrix not positive definite;
+/// the next solve tries again.
+fn trial(
+    topology: &mut Topology,
+    positions: &[Vec3],
+    workspace: &mut PcgWorkspace,
+    time: f64,
+) -> Result<Choice, StepError> {
+    let Topology {
+        matrix,
+        jacobi,
+        filters,
+        cholesky,
+        amg,
+        ..
+    } = topology;
+    // xorshift64*, mapped to [−1, 1].
+    let mut seed = 0x9E37_79B9_7F4A_7C15_u64;
+    let mut uniform = || {
+        seed ^= seed >> 12;
+        seed ^= seed << 25;
+        seed ^= seed >> 27;
+        (seed.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    };
+    let r: Vec<Vec3> = filters
+        .iter()
+        .map(|f| f.apply(Vec3::new(uniform(), uniform(), uniform())))
+        .collect();
+    let mut y = vec![Vec3::zeros(); r.len()];
+    let mut timings: Vec<(Choice, Duration)> = Vec::with_capacity(3);
+    let affordable = predicted_factor_entries(matrix.pattern()).is_some_and(|entries| {
+        entries.saturating_mul(size_of::<f64>()) <= LinearSolver::AUTO_FACTOR_BYTES
+    });
+    if affordable {
+        // Kept for a retry when this matrix is not positive definite.
+        let factor = match cholesky {
+            Some(factor) => factor,
+            None => cholesky.insert(SparseCholesky::new(matrix)?),
+        };
+        let ((), elapsed) = second_run(|| factor.solve(matrix, filters, &r, &mut y))
+            .map_err(|particle| StepError::NotPositiveDefinite { time, particle })?;
+        timings.push((Choice::Cholesky, elapsed));
+    }
+    let settings = PcgSettings::default();
+    match Amg::build(matrix, filters, positions, AmgSettings::default()) {
+        Ok(mut hierarchy) => {
+            let solved = second_run(|| {
+                hierarchy
+                    .refresh_smoother(matrix, filters)
+                    .map_err(|_| ())?;
+                y.fill(Vec3::zeros());
+                let cycle = hierarchy.cycle(matrix, filters);
+                cg::solve(matrix, &cycle, filters, &r, &mut y, settings, workspace).map_err(|_| ())
+            });
+            if let Ok((info, elapsed)) = solved {
+                timings.push((Choice::Amg(settings), elapsed));
+                amg.amg = Some(hierarchy);
+                amg.after(Renewal::Hierarchy, info.iterations);
+            }
+        }
+        Err(AmgError::NotPositiveDefinite(particle)) if !affordable => {
+            return Err(StepError::NotPositiveDefinite {
+                time,
+                particle: Some(particle),
+            });
+        }
+        Err(_) => {}
+    }
+    let capped = PcgSettings::new(
+        settings.tolerance(),
+        LinearSolver::AUTO_TRIAL_PCG_ITERATIONS,
+    )
+    .expect("a tolerance in (0, 1) and a positive cap");
+    let solved = second_run(|| {
+        y.fill(Vec3::zeros());
+        cg::solve(matrix, jacobi, filters, &r, &mut y, capped, workspace)
+    });
+    if let Ok((_, elapsed)) = solved {
+        timings.push((Choice::Pcg(settings), elapsed));
+    }
+    // With nothing solved, multigrid — the candidate for systems too large
+    // to factorize — reports why at the solve that follows.
+    let best = timings
+        .iter()
+        .min_by_key(|&&(_, elapsed)| elapsed)
+        .map_or(Choice::Amg(settings), |&(choice, _)| choice);
+    if best != Choice::Cholesky {
+        *cholesky = None;
+    }
+    if !matches!(best, Choice::Amg(_)) {
+        *amg = AmgState::default();
+    }
+    Ok(best)
+}
+
+/// Runs `solve` twice and times the second run, which finds in place the
+/// memory the first touched (a fresh factor, a fresh hierarchy), as the
+/// solves of a run do; a failing first run is returned as is.
+fn second_run<T, E>(mut solve: impl FnMut() -> Result<T, E>) -> Result<(T, Duration), E> {
+    solve()?;
+    let clock = Instant::now();
+    let out = solve()?;
+    Ok((out, clock.elapsed()))
 }
