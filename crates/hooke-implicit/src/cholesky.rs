@@ -13,6 +13,7 @@ use hooke_core::{Mat3, StepError, Vec3};
 
 use std::cell::RefCell;
 
+use crate::amg::fine::Neighbours;
 use crate::cg::Preconditioner;
 use crate::filter::Filter;
 use crate::matrix::BlockMatrix;
@@ -268,22 +269,14 @@ impl Preconditioner for FactorPreconditioner<'_> {
 /// if the graph does not fit 32-bit indices.
 pub(crate) fn predicted_factor_entries(pattern: &Pattern) -> Option<usize> {
     let n = pattern.rows();
-    // Both triangles of the graph, each row's neighbours sorted (a system
-    // joins a pair of particles by one spring at most).
-    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); n];
-    for q in 0..n {
-        for t in pattern.upper(q) {
-            let p = pattern.column(t);
-            neighbours[q].push(u32::try_from(p).ok()?);
-            neighbours[p].push(u32::try_from(q).ok()?);
-        }
-    }
+    // Both triangles of the graph in compressed columns, each column's rows
+    // in increasing order.
+    let neighbours = Neighbours::new(pattern);
     let mut col_ptr = Vec::with_capacity(n + 1);
     let mut row_idx = Vec::new();
     col_ptr.push(0u32);
-    for row in &mut neighbours {
-        row.sort_unstable();
-        row_idx.extend_from_slice(row);
+    for q in 0..n {
+        row_idx.extend(neighbours.of(q).iter().map(|&(p, _)| p));
         col_ptr.push(u32::try_from(row_idx.len()).ok()?);
     }
     drop(neighbours);

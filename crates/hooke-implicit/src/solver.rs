@@ -48,13 +48,17 @@ pub enum LinearSolver {
     /// compressed clamp. [`LinearSolver::Auto`] does not choose it.
     LaggedCholesky(PcgSettings),
     /// Chooses by measured cost. Below [`LinearSolver::AUTO_TRIAL_PARTICLES`]
-    /// particles it takes [`LinearSolver::Cholesky`]: there a factorization
-    /// costs less than a multigrid solve on every scene measured (a 40×40
-    /// cloth, tetrahedral lattices, ropes). From there on the first solve
-    /// starts with a trial: each candidate solves the step's matrix for the
-    /// same right-hand side, timed, and the fastest is kept for the rest of
-    /// the run — [`LinearSolver::Cholesky`] (refill, numeric factorization
-    /// and solve; skipped when the factor, predicted from the fill of an
+    /// particles it takes [`LinearSolver::Cholesky`] without a trial: there
+    /// a step costs milliseconds whatever the solver, and the factorization
+    /// cost less than multigrid on every scene measured (cloth, tetrahedral
+    /// lattices, ropes; block-Jacobi PCG stepped a tetrahedral cube of 729
+    /// particles at `h = 1/240 s` in 1.9 ms against its 5.0 ms). From there
+    /// on the first solve starts with a trial: each candidate solves the
+    /// step's matrix for the same pseudo-random right-hand side twice, the
+    /// second run timed (the first touches fresh memory, as later solves do
+    /// not), and the fastest is kept for the rest of the run —
+    /// [`LinearSolver::Cholesky`] (refill, numeric factorization and solve;
+    /// skipped when the factor, predicted from the fill of an
     /// approximate-minimum-degree ordering of the particle graph, would take
     /// more than [`LinearSolver::AUTO_FACTOR_BYTES`]), [`LinearSolver::Amg`]
     /// (the hierarchy's build is not timed, as it is kept across steps; the
@@ -547,10 +551,15 @@ fn trial(
                 let cycle = hierarchy.cycle(matrix, filters);
                 cg::solve(matrix, &cycle, filters, &r, &mut y, settings, workspace).map_err(|_| ())
             });
-            if let Ok((info, elapsed)) = solved {
+            if let Ok((_, elapsed)) = solved {
                 timings.push((Choice::Amg(settings), elapsed));
-                amg.amg = Some(hierarchy);
-                amg.after(Renewal::Hierarchy, info.iterations);
+                // The first solve of the step's own systems sets the
+                // baseline of the renewals: the pseudo-random right-hand
+                // side takes more iterations than they do.
+                *amg = AmgState {
+                    amg: Some(hierarchy),
+                    ..AmgState::default()
+                };
             }
         }
         Err(AmgError::NotPositiveDefinite(particle)) if !affordable => {

@@ -112,9 +112,8 @@ impl Csr {
         for_each_row_slice(values, row_ptr, fill);
     }
 
-    /// The transpose's pattern, and per entry of the transpose the position
-    /// of the same entry in `self` (for [`Csr::transpose_into`]).
-    pub(crate) fn transpose_pattern(&self) -> (Self, Vec<usize>) {
+    /// The transpose.
+    pub(crate) fn transpose(&self) -> Self {
         let mut count = vec![0usize; self.cols + 1];
         for &j in &self.col_idx {
             count[j as usize + 1] += 1;
@@ -124,29 +123,20 @@ impl Csr {
         }
         let row_ptr = count.clone();
         let mut col_idx = vec![0u32; self.col_idx.len()];
-        let mut source = vec![0usize; self.col_idx.len()];
+        let mut values = vec![0.0; self.values.len()];
         for i in 0..self.rows() {
             for k in self.row_ptr[i]..self.row_ptr[i + 1] {
                 let j = self.col_idx[k] as usize;
                 col_idx[count[j]] = i as u32;
-                source[count[j]] = k;
+                values[count[j]] = self.values[k];
                 count[j] += 1;
             }
         }
-        let transpose = Self {
+        Self {
             cols: self.rows(),
-            values: vec![0.0; col_idx.len()],
             row_ptr,
             col_idx,
-        };
-        (transpose, source)
-    }
-
-    /// Refills `transpose` from `self` through the map of
-    /// [`Csr::transpose_pattern`].
-    pub(crate) fn transpose_into(&self, transpose: &mut Self, source: &[usize]) {
-        for (t, &k) in transpose.values.iter_mut().zip(source) {
-            *t = self.values[k];
+            values,
         }
     }
 }
@@ -259,8 +249,7 @@ mod tests {
                 assert!((dc[i][j] - expected).abs() < 1e-12, "({i}, {j})");
             }
         }
-        let (mut t, source) = a.transpose_pattern();
-        a.transpose_into(&mut t, &source);
+        let t = a.transpose();
         let dt = dense(&t);
         for i in 0..7 {
             for j in 0..5 {

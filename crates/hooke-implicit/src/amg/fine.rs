@@ -8,6 +8,7 @@ use super::csr::{Csr, for_each_row_slice};
 use super::prolongation::MODES;
 use crate::filter::Filter;
 use crate::matrix::BlockMatrix;
+use crate::pattern::Pattern;
 
 /// Each particle's neighbours through a spring, in increasing order, with
 /// the spring's slot: the block rows of `A` without the diagonal.
@@ -18,9 +19,8 @@ pub(crate) struct Neighbours {
 }
 
 impl Neighbours {
-    /// The neighbours in `a`'s pattern.
-    pub(crate) fn new(a: &BlockMatrix) -> Self {
-        let pattern = a.pattern();
+    /// The neighbours in `pattern`.
+    pub(crate) fn new(pattern: &Pattern) -> Self {
         let n = pattern.rows();
         let mut ptr = vec![0usize; n + 1];
         for i in 0..n {
@@ -52,7 +52,7 @@ impl Neighbours {
 
     /// The neighbours of `i` and the slots joining them.
     #[inline]
-    fn of(&self, i: usize) -> &[(u32, u32)] {
+    pub(crate) fn of(&self, i: usize) -> &[(u32, u32)] {
         &self.entries[self.ptr[i]..self.ptr[i + 1]]
     }
 

@@ -58,7 +58,7 @@
 mod aggregation;
 pub(crate) mod coarse;
 pub(crate) mod csr;
-mod fine;
+pub(crate) mod fine;
 mod prolongation;
 mod smoother;
 
@@ -207,8 +207,8 @@ struct Level {
     inverse: BlockInverse,
     chebyshev: Chebyshev,
     p: Csr,
+    /// `Pᵀ`: `P` is fixed once built, and so is its transpose.
     r: Csr,
-    r_source: Vec<usize>,
     /// `A P`, refilled before `A_next = R (A P)`.
     ap: Csr,
     /// The power method's last iterate (see [`Level::eigenvalue`]).
@@ -262,7 +262,7 @@ impl Amg {
             filters.len() == n && positions.len() == n,
             "one filter and one position per particle"
         );
-        let neighbours = Neighbours::new(a);
+        let neighbours = Neighbours::new(a.pattern());
         let mut xs = vec![Vec3::zeros(); n];
         let mut ys = vec![Vec3::zeros(); n];
         let mut levels = Vec::new();
@@ -430,7 +430,6 @@ impl Amg {
                     + l.p.bytes()
                     + l.r.bytes()
                     + l.ap.bytes()
-                    + 8 * l.r_source.len()
                     + l.inverse.bytes()
                     + vectors(l)
             })
@@ -558,8 +557,7 @@ impl Level {
     /// `node_ptr`, prolongator `p` and the pattern `ap` of `A P`.
     fn new(a: Csr, node_ptr: Vec<usize>, p: Csr, ap: Csr) -> Self {
         let n = p.rows();
-        let (mut r, r_source) = p.transpose_pattern();
-        p.transpose_into(&mut r, &r_source);
+        let r = p.transpose();
         let zeros = || vec![0.0; n];
         Self {
             a,
@@ -571,7 +569,6 @@ impl Level {
             },
             p,
             r,
-            r_source,
             ap,
             eigenvector: Vec::new(),
             b: zeros(),
