@@ -2,13 +2,14 @@
 //! size: backward Euler never gains energy and every step is finite and
 //! converged; BDF2 stays finite and within 5 % of its initial energy — on
 //! the extreme table (24×24 cloth, stiffness 10⁻² … 10¹² N/m, steps
-//! 10⁻⁴ … 1 s), on a tet-lattice cube dropped onto a floor and on a chain
-//! whose neighbours' masses differ by 10⁶.
+//! 10⁻⁴ … 1 s), on a 50×50 sheet large enough for the default solver to be
+//! chosen by a timed trial, on a tet-lattice cube dropped onto a floor and
+//! on a chain whose neighbours' masses differ by 10⁶.
 //!
 //! `cargo run --release --example extreme_table` prints the table's Newton
 //! iterations, substeps and time per step.
 
-use hooke::implicit::Implicit;
+use hooke::implicit::{Implicit, LinearSolver};
 use hooke::prelude::*;
 use hooke::scenes::{Lattice, Mass, TetSplit};
 
@@ -102,6 +103,29 @@ fn backward_euler_at_its_defaults_never_gains_energy_on_the_extreme_table() {
             assert_backward_euler(&format!("k = {k:e} N/m, dt = {dt} s"), &run);
         }
     }
+}
+
+/// From [`LinearSolver::AUTO_TRIAL_PARTICLES`] on, the default solver is
+/// chosen by a timed trial; on a 50×50 sheet at 10⁴ N/m and 0.1 s (where
+/// multigrid and the factor solve the trial about as fast, and multigrid's
+/// later solves can reach their cap) backward Euler at its defaults still
+/// never gains energy, and no linear solve stops at its cap.
+#[test]
+fn backward_euler_at_its_defaults_on_a_sheet_large_enough_for_the_trial() {
+    let system = Sheet {
+        mass: 0.1,
+        stiffness: 1e4,
+        damping: 0.0,
+        air_damping: 0.0,
+        height: 1.0,
+        ..Sheet::new(50)
+    }
+    .system()
+    .unwrap();
+    assert!(system.particle_count() >= LinearSolver::AUTO_TRIAL_PARTICLES);
+    let run = run(&system, &mut Implicit::backward_euler(), 0.1, 2);
+    assert_backward_euler("50×50 sheet, k = 1e4 N/m, dt = 0.1 s", &run);
+    assert_eq!(run.report.unconverged_solves, 0, "{:?}", run.report);
 }
 
 #[test]
