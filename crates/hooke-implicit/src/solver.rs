@@ -501,9 +501,11 @@ impl Solve<'_> {
 
 /// [`LinearSolver::Auto`]'s trial: solves the filtered system last
 /// assembled, `S A y = S r`, for a right-hand side `r` of pseudo-random
-/// components in `[−1, 1]` with each candidate, timing each solve, keeps
-/// what the fastest one built (the factor or the hierarchy) and returns
-/// it. A right-hand side of every frequency tries each preconditioner as
+/// components in `[−1, 1]` with each candidate ([`second_run`] timing
+/// it), keeps what the chosen one built (the factor or the hierarchy) and
+/// returns it: the fastest, but an iterative candidate only within
+/// [`LinearSolver::AUTO_ITERATIVE_MARGIN`] of the factorization's time. A
+/// right-hand side of every frequency tries each preconditioner as
 /// the later Newton systems will, where the step's own one may be smooth
 /// (a cloth at rest under gravity) and flatter a preconditioner that only
 /// damps smooth errors.
