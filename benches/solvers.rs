@@ -280,32 +280,45 @@ fn swinging(system: &System) -> State {
     state
 }
 
-/// Benchmarks one step of `integrator` from `start`, printing its report
-/// and its distance to `reference`.
+/// Benchmarks one step of `h` of `integrator` from `start`, printing its
+/// report and, given a reference, its distance to it.
 fn bench_step(
     group: &mut BenchmarkGroup<'_, WallTime>,
-    (name, n): (&str, usize),
-    system: &System,
-    (start, reference): (&State, &State),
+    (name, case): (&str, impl std::fmt::Display),
+    (system, h): (&System, f64),
+    (start, reference): (&State, Option<&State>),
     integrator: &mut dyn Integrator,
 ) {
     let mut state = start.clone();
-    let report = integrator.step(system, &mut state, H).unwrap();
+    let report = integrator.step(system, &mut state, h).unwrap();
+    let distance = reference.map_or(String::new(), |reference| {
+        format!(", {:.1e} m from the reference", distance(&state, reference))
+    });
     eprintln!(
-        "{name} {n}²: {} ({} Newton iterations, {} linear solves, {} linear iterations), {:.1e} m from the reference",
+        "{name} {case}: {} ({} Newton iterations, {} linear solves, {} linear iterations){distance}",
         report.linear_solver,
         report.newton_iterations,
         report.linear_solves,
         report.linear_iterations,
-        distance(&state, reference)
     );
-    group.bench_with_input(BenchmarkId::new(name, n), &n, |b, _| {
+    group.bench_function(BenchmarkId::new(name, case), |b| {
         b.iter_batched_ref(
             || start.clone(),
-            |state| black_box(integrator.step(system, state, H).unwrap()),
+            |state| black_box(integrator.step(system, state, h).unwrap()),
             BatchSize::LargeInput,
         );
     });
+}
+
+/// The solvers whose converged steps the `step` and `scene-step` groups
+/// compare: `auto` and each of its candidates.
+fn stepped_solvers() -> [LinearSolver; 4] {
+    [
+        LinearSolver::Auto,
+        LinearSolver::Cholesky,
+        LinearSolver::Amg(PcgSettings::default()),
+        LinearSolver::Pcg(PcgSettings::default()),
+    ]
 }
 
 /// The step tightly converged (`ε = 10⁻⁹`) from `start`.
@@ -338,14 +351,9 @@ fn steps(c: &mut Criterion) {
         let mut integrators: Vec<(&str, Box<dyn Integrator>)> =
             vec![("fast-mass-spring-10", Box::new(FastMassSpring::default()))];
         if n <= 200 {
-            for (name, solver) in [
-                ("auto", LinearSolver::Auto),
-                ("cholesky", LinearSolver::Cholesky),
-                ("amg", LinearSolver::Amg(PcgSettings::default())),
-                ("pcg", LinearSolver::Pcg(PcgSettings::default())),
-            ] {
+            for solver in stepped_solvers() {
                 integrators.push((
-                    name,
+                    solver.name(),
                     Box::new(Implicit::backward_euler().with_solver(solver)),
                 ));
             }
@@ -364,8 +372,8 @@ fn steps(c: &mut Criterion) {
             bench_step(
                 &mut group,
                 (name, n),
-                &system,
-                (&start, &reference),
+                (&system, H),
+                (&start, Some(&reference)),
                 integrator.as_mut(),
             );
         }
@@ -393,16 +401,16 @@ fn equal_accuracy(c: &mut Criterion) {
         bench_step(
             &mut group,
             ("backward-euler", n),
-            &system,
-            (&start, &reference),
+            (&system, H),
+            (&start, Some(&reference)),
             &mut Implicit::backward_euler(),
         );
         match iterations_to_reach(&system, &start, &reference, target) {
             Ok(iterations) => bench_step(
                 &mut group,
                 (&format!("fast-mass-spring-{iterations}"), n),
-                &system,
-                (&start, &reference),
+                (&system, H),
+                (&start, Some(&reference)),
                 &mut FastMassSpring::new(iterations).unwrap(),
             ),
             Err((reached, time)) => eprintln!(
@@ -436,29 +444,14 @@ fn other_scene_steps(c: &mut Criterion) {
         for _ in 0..3 {
             warm_up.step(&system, &mut start, h).unwrap();
         }
-        for (name, solver) in [
-            ("auto", LinearSolver::Auto),
-            ("cholesky", LinearSolver::Cholesky),
-            ("amg", LinearSolver::Amg(PcgSettings::default())),
-            ("pcg", LinearSolver::Pcg(PcgSettings::default())),
-        ] {
-            let mut integrator = Implicit::backward_euler().with_solver(solver);
-            let mut state = start.clone();
-            let report = integrator.step(&system, &mut state, h).unwrap();
-            eprintln!(
-                "{scene} {name}: {} ({} Newton iterations, {} linear solves, {} linear iterations)",
-                report.linear_solver,
-                report.newton_iterations,
-                report.linear_solves,
-                report.linear_iterations,
+        for solver in stepped_solvers() {
+            bench_step(
+                &mut group,
+                (solver.name(), scene),
+                (&system, h),
+                (&start, None),
+                &mut Implicit::backward_euler().with_solver(solver),
             );
-            group.bench_function(BenchmarkId::new(name, scene), |b| {
-                b.iter_batched_ref(
-                    || start.clone(),
-                    |state| black_box(integrator.step(&system, state, h).unwrap()),
-                    BatchSize::LargeInput,
-                );
-            });
         }
     }
     group.finish();

@@ -68,11 +68,10 @@ pub enum LinearSolver {
     /// it loses), each to the default [`PcgSettings`] tolerance; an
     /// iterative candidate is kept only if it takes at most
     /// [`LinearSolver::AUTO_ITERATIVE_MARGIN`] of the factorization's time.
-    /// The choice
-    /// is reported in [`StepReport::linear_solver`]. As it rests on
-    /// timings it can differ between machines, and between runs where two
-    /// candidates cost about the same: a run that must be reproducible to
-    /// the last bit names its solver.
+    /// The choice is reported in [`StepReport::linear_solver`]. As it rests
+    /// on timings it can differ between machines, and between runs where
+    /// two candidates cost about the same: a run that must be reproducible
+    /// to the last bit names its solver.
     ///
     /// Measured per converged step (`cargo bench --bench solvers --
     /// scene-step`, `benches/README.md`): a rope of 10 001 particles steps
@@ -541,7 +540,9 @@ fn trial(
         .map(|f| f.apply(Vec3::new(uniform(), uniform(), uniform())))
         .collect();
     let mut y = vec![Vec3::zeros(); r.len()];
-    let mut timings: Vec<(Choice, Duration)> = Vec::with_capacity(3);
+    // The factorization's time, and the iterative candidates' times.
+    let mut direct = None;
+    let mut iterative: Vec<(Choice, Duration)> = Vec::with_capacity(2);
     let affordable = predicted_factor_entries(matrix.pattern()).is_some_and(|entries| {
         entries.saturating_mul(size_of::<f64>()) <= LinearSolver::AUTO_FACTOR_BYTES
     });
@@ -553,7 +554,7 @@ fn trial(
         };
         let ((), elapsed) = second_run(|| factor.solve(matrix, filters, &r, &mut y))
             .map_err(|particle| StepError::NotPositiveDefinite { time, particle })?;
-        timings.push((Choice::Cholesky, elapsed));
+        direct = Some(elapsed);
     }
     let settings = PcgSettings::default();
     match Amg::build(matrix, filters, positions, AmgSettings::default()) {
@@ -567,7 +568,7 @@ fn trial(
                 cg::solve(matrix, &cycle, filters, &r, &mut y, settings, workspace).map_err(|_| ())
             });
             if let Ok((_, elapsed)) = solved {
-                timings.push((Choice::Amg(settings), elapsed));
+                iterative.push((Choice::Amg(settings), elapsed));
                 // The first solve of the step's own systems sets the
                 // baseline of the renewals: the pseudo-random right-hand
                 // side takes more iterations than they do.
@@ -595,24 +596,25 @@ fn trial(
         cg::solve(matrix, jacobi, filters, &r, &mut y, capped, workspace)
     });
     if let Ok((_, elapsed)) = solved {
-        timings.push((Choice::Pcg(settings), elapsed));
+        iterative.push((Choice::Pcg(settings), elapsed));
     }
     // An iterative candidate must beat the factorization by the margin;
     // with nothing solved, multigrid — the candidate for systems too large
     // to factorize — reports why at the solve that follows.
-    let factor = timings
+    let fastest = iterative
         .iter()
-        .find(|(choice, _)| *choice == Choice::Cholesky)
-        .map(|&(_, elapsed)| elapsed.as_secs_f64());
-    let fastest = timings.iter().min_by_key(|&&(_, elapsed)| elapsed).copied();
-    let best = match (fastest, factor) {
-        (None, _) => Choice::Amg(settings),
-        (Some((_, elapsed)), Some(direct))
-            if elapsed.as_secs_f64() > LinearSolver::AUTO_ITERATIVE_MARGIN * direct =>
+        .min_by_key(|&&(_, elapsed)| elapsed)
+        .copied();
+    let best = match (fastest, direct) {
+        (Some((choice, elapsed)), Some(direct))
+            if elapsed.as_secs_f64()
+                <= LinearSolver::AUTO_ITERATIVE_MARGIN * direct.as_secs_f64() =>
         {
-            Choice::Cholesky
+            choice
         }
-        (Some((choice, _)), _) => choice,
+        (_, Some(_)) => Choice::Cholesky,
+        (Some((choice, _)), None) => choice,
+        (None, None) => Choice::Amg(settings),
     };
     if best != Choice::Cholesky {
         *cholesky = None;
