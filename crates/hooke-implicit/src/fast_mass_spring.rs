@@ -158,7 +158,6 @@ impl Prefactored {
         }
         entries.sort_unstable_by_key(|&(r, c, _)| (r, c));
         let mut a = Csr {
-            cols: free,
             row_ptr: vec![0; free + 1],
             ..Csr::default()
         };

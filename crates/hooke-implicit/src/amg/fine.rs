@@ -4,7 +4,7 @@
 use hooke_core::{Mat3, Vec3};
 
 use super::aggregation::Graph;
-use super::csr::{Csr, for_each_row_slice};
+use super::bsr::{Block, Bsr, for_each_row_slice, zero};
 use super::prolongation::MODES;
 use crate::filter::Filter;
 use crate::matrix::BlockMatrix;
@@ -125,31 +125,29 @@ pub(crate) fn graph(a: &BlockMatrix, filters: &[Filter], neighbours: &Neighbours
     g
 }
 
-/// The near-null space of `Â`: per unknown, the filtered rigid-body modes
-/// of the particles at `positions` about their centroid `c`,
+/// The near-null space of `Â`: per particle, the filtered rigid-body
+/// modes at `positions` about their centroid `c`,
 /// `S_i [I | (e_x × r_i) (e_y × r_i) (e_z × r_i)]` with `r_i = x_i − c`.
-pub(crate) fn rigid_modes(positions: &[Vec3], filters: &[Filter]) -> Vec<[f64; MODES]> {
+pub(crate) fn rigid_modes(positions: &[Vec3], filters: &[Filter]) -> Vec<Block<3, MODES>> {
     let n = positions.len().max(1);
     let centroid = positions.iter().sum::<Vec3>() / n as f64;
-    let mut modes = vec![[0.0; MODES]; 3 * positions.len()];
-    for (i, (x, f)) in positions.iter().zip(filters).enumerate() {
-        let r = x - centroid;
-        let columns = [
-            Vec3::x(),
-            Vec3::y(),
-            Vec3::z(),
-            Vec3::x().cross(&r),
-            Vec3::y().cross(&r),
-            Vec3::z().cross(&r),
-        ];
-        for (c, column) in columns.iter().enumerate() {
-            let filtered = f.apply(*column);
-            for a in 0..3 {
-                modes[3 * i + a][c] = filtered[a];
-            }
-        }
-    }
-    modes
+    positions
+        .iter()
+        .zip(filters)
+        .map(|(x, f)| {
+            let r = x - centroid;
+            let columns = [
+                Vec3::x(),
+                Vec3::y(),
+                Vec3::z(),
+                Vec3::x().cross(&r),
+                Vec3::y().cross(&r),
+                Vec3::z().cross(&r),
+            ]
+            .map(|column| f.apply(column));
+            std::array::from_fn(|a| std::array::from_fn(|c| columns[c][a]))
+        })
+        .collect()
 }
 
 /// The scalar diagonal of `Â_F` (see [`multiply_into`]).
@@ -173,24 +171,26 @@ pub(crate) fn filtered_diagonal(
         .collect()
 }
 
-/// The pattern of `Â P` for a `P` whose three rows of each particle share
-/// their columns (as every prolongator from the particles does): row
-/// `3i + r` holds the columns of the rows of `i` and of its neighbours —
-/// of its strong neighbours only when `strong` marks them per entry of
-/// [`Neighbours`].
-pub(crate) fn product_pattern(neighbours: &Neighbours, p: &Csr, strong: Option<&[bool]>) -> Csr {
+/// The pattern of `Â P` for a prolongator `P` from the particles: block
+/// row `i` holds the block columns of the rows of `i` and of its
+/// neighbours — of its strong neighbours only when `strong` marks them per
+/// entry of [`Neighbours`].
+pub(crate) fn product_pattern(
+    neighbours: &Neighbours,
+    p: &Bsr<3, MODES>,
+    strong: Option<&[bool]>,
+) -> Bsr<3, MODES> {
     let n = neighbours.ptr.len() - 1;
     let mut marker = vec![usize::MAX; p.cols];
-    let mut out = Csr {
+    let mut out = Bsr {
         cols: p.cols,
-        row_ptr: Vec::with_capacity(3 * n + 1),
-        ..Csr::default()
+        row_ptr: Vec::with_capacity(n + 1),
+        ..Bsr::default()
     };
     out.row_ptr.push(0);
-    let mut row = Vec::new();
     for i in 0..n {
-        row.clear();
         let start = neighbours.ptr[i];
+        let first = out.col_idx.len();
         let others = neighbours
             .of(i)
             .iter()
@@ -198,20 +198,17 @@ pub(crate) fn product_pattern(neighbours: &Neighbours, p: &Csr, strong: Option<&
             .filter(|&(k, _)| strong.is_none_or(|s| s[start + k]))
             .map(|(_, &(j, _))| j as usize);
         for j in std::iter::once(i).chain(others) {
-            for &c in p.row(3 * j).0 {
+            for &c in p.row(j).0 {
                 if marker[c as usize] != i {
                     marker[c as usize] = i;
-                    row.push(c);
+                    out.col_idx.push(c);
                 }
             }
         }
-        row.sort_unstable();
-        for _ in 0..3 {
-            out.col_idx.extend_from_slice(&row);
-            out.row_ptr.push(out.col_idx.len());
-        }
+        out.col_idx[first..].sort_unstable();
+        out.row_ptr.push(out.col_idx.len());
     }
-    out.values = vec![0.0; out.col_idx.len()];
+    out.values = vec![zero(); out.col_idx.len()];
     out
 }
 
@@ -224,37 +221,28 @@ pub(crate) fn multiply_into(
     a: &BlockMatrix,
     filters: &[Filter],
     neighbours: &Neighbours,
-    p: &Csr,
+    p: &Bsr<3, MODES>,
     strong: Option<&[bool]>,
-    out: &mut Csr,
+    out: &mut Bsr<3, MODES>,
 ) {
-    let n = a.rows();
-    let particle_ptr: Vec<usize> = (0..=n).map(|i| out.row_ptr[3 * i]).collect();
-    let Csr {
+    let Bsr {
         row_ptr,
         col_idx,
         values,
         ..
     } = out;
-    let fill = |position: &mut Vec<u32>, i: usize, values: &mut [f64]| {
+    let fill = |position: &mut Vec<u32>, i: usize, values: &mut [Block<3, MODES>]| {
         position.resize(p.cols, 0);
-        values.fill(0.0);
-        let width = row_ptr[3 * i + 1] - row_ptr[3 * i];
-        for (k, &c) in col_idx[row_ptr[3 * i]..row_ptr[3 * i + 1]]
-            .iter()
-            .enumerate()
-        {
+        values.fill(zero());
+        for (k, &c) in col_idx[row_ptr[i]..row_ptr[i + 1]].iter().enumerate() {
             position[c as usize] = k as u32;
         }
         let mut add = |j: usize, block: Mat3| {
-            for c in 0..3 {
-                let (pc, pv) = p.row(3 * j + c);
-                for (&col, &v) in pc.iter().zip(pv) {
-                    let k = position[col as usize] as usize;
-                    for r in 0..3 {
-                        values[r * width + k] += block[(r, c)] * v;
-                    }
-                }
+            let block: Block<3, 3> =
+                std::array::from_fn(|r| std::array::from_fn(|c| block[(r, c)]));
+            let (cols, blocks) = p.row(j);
+            for (&col, pb) in cols.iter().zip(blocks) {
+                super::bsr::add_product(&mut values[position[col as usize] as usize], &block, pb);
             }
         };
         let start = neighbours.ptr[i];
@@ -269,5 +257,5 @@ pub(crate) fn multiply_into(
         }
         add(i, diagonal);
     };
-    for_each_row_slice(values, &particle_ptr, fill);
+    for_each_row_slice(values, row_ptr, fill);
 }

@@ -29,12 +29,19 @@
 //! down to a level of at most [`AmgSettings::coarse_unknowns`] unknowns,
 //! factorized by faer's sparse Cholesky.
 //!
+//! Every aggregate is a coarse node of six unknowns — an aggregate whose
+//! modes span fewer (at a pin, or too small) pads `T` with zero columns,
+//! which the Galerkin operator leaves uncoupled and gets a unit diagonal —
+//! so that the transfers and coarse operators are stored in dense blocks,
+//! 3x6 and 6x3 from the particles, 6x6 on coarse levels, one column index
+//! per block (`bsr` module).
+//!
 //! # The cycle
 //!
 //! One V-cycle per preconditioner application: on every level a Chebyshev
 //! sweep of degree [`AmgSettings::smoother_degree`] preconditioned by the
 //! inverses of the diagonal node blocks (3x3 per particle; on coarse levels
-//! the up-to-6x6 blocks of an aggregate's unknowns), on the interval
+//! the 6x6 blocks of an aggregate's unknowns), on the interval
 //! `[1.1 λ̂/30, 1.1 λ̂]` of `D⁻¹Â` (`λ̂` a power-iteration estimate),
 //! restriction by `Pᵀ`, the coarse correction, prolongation by `P` and the
 //! same sweep again. The pre- and post-sweeps are the same polynomial, so the
@@ -56,6 +63,7 @@
 //! as many.
 
 mod aggregation;
+mod bsr;
 pub(crate) mod coarse;
 pub(crate) mod csr;
 pub(crate) mod fine;
@@ -67,10 +75,11 @@ use std::cell::RefCell;
 use hooke_core::{ParameterError, Vec3};
 
 use self::aggregation::{Graph, aggregate, strong_mask};
+use self::bsr::{Bsr, zero};
 use self::coarse::ScalarCholesky;
 use self::csr::Csr;
 use self::fine::Neighbours;
-use self::prolongation::{MODES, Tentative, smooth, tentative};
+use self::prolongation::{MODES, smooth, tentative};
 use self::smoother::{BlockInverse, Chebyshev, Sweep, largest_eigenvalue};
 use crate::cg::Preconditioner;
 use crate::filter::Filter;
@@ -197,21 +206,25 @@ pub enum AmgError {
     TooLarge,
 }
 
-/// One level above the coarsest: its operator (on coarse levels), smoother,
-/// the transfer to the next level and its vectors.
+/// A coarse level's operator: 6x6 blocks, one block row per aggregate.
+type Coarse = Bsr<MODES, MODES>;
+
+/// One level above the coarsest, of nodes of `N` unknowns (3 on the
+/// particles, [`MODES`] on the aggregates): its operator (on coarse
+/// levels), smoother, the transfer to the next level and its vectors.
 #[derive(Debug)]
-struct Level {
+struct Level<const N: usize> {
     /// The operator; empty on the finest level, which reads the
     /// [`BlockMatrix`].
-    a: Csr,
-    inverse: BlockInverse,
+    a: Bsr<N, N>,
+    inverse: BlockInverse<N>,
     chebyshev: Chebyshev,
-    p: Csr,
+    p: Bsr<N, MODES>,
     /// `Pᵀ`: `P` is fixed once built, and so is its transpose.
-    r: Csr,
+    r: Bsr<MODES, N>,
     /// `A P`, refilled before `A_next = R (A P)`.
-    ap: Csr,
-    /// The power method's last iterate (see [`Level::eigenvalue`]).
+    ap: Bsr<N, MODES>,
+    /// The power method's last iterate (see [`Level::iterations`]).
     eigenvector: Vec<f64>,
     b: Vec<f64>,
     x: Vec<f64>,
@@ -222,7 +235,9 @@ struct Level {
 /// The coarsest level.
 #[derive(Debug)]
 struct Coarsest {
-    a: Csr,
+    a: Coarse,
+    /// `a` in scalar compressed rows, the factorization's input.
+    scalar: Csr,
     /// `None` when the level has no unknowns.
     cholesky: Option<ScalarCholesky>,
     x: Vec<f64>,
@@ -234,7 +249,9 @@ struct Coarsest {
 pub struct Amg {
     settings: AmgSettings,
     neighbours: Neighbours,
-    levels: Vec<Level>,
+    fine: Level<3>,
+    /// The coarse levels above the coarsest, finest first.
+    levels: Vec<Level<MODES>>,
     coarsest: Coarsest,
     /// Scratch of the finest level's products.
     xs: Vec<Vec3>,
@@ -265,17 +282,10 @@ impl Amg {
         let neighbours = Neighbours::new(a.pattern());
         let mut xs = vec![Vec3::zeros(); n];
         let mut ys = vec![Vec3::zeros(); n];
-        let mut levels = Vec::new();
         // The finest level.
-        let node_ptr: Vec<usize> = (0..=n).map(|i| 3 * i).collect();
         let graph = fine::graph(a, filters, &neighbours);
         let (agg, count) = aggregate(&graph, settings.strength);
-        let tent = tentative(
-            &fine::rigid_modes(positions, filters),
-            &node_ptr,
-            &agg,
-            count,
-        );
+        let tent = tentative(&fine::rigid_modes(positions, filters), &agg, count);
         let strong = strong_mask(&graph, settings.filter);
         let mut at = fine::product_pattern(&neighbours, &tent.t, Some(&strong));
         fine::multiply_into(a, filters, &neighbours, &tent.t, Some(&strong), &mut at);
@@ -286,62 +296,63 @@ impl Amg {
         );
         let p = smooth(&tent.t, &at, &diagonal, omega);
         let ap = fine::product_pattern(&neighbours, &p, None);
-        let mut level = Level::new(Csr::default(), node_ptr, p, ap);
-        let mut next = level.r.product_pattern(&level.ap);
-        let Tentative {
-            node_ptr: mut coarse_nodes,
-            modes: mut coarse_modes,
-            ..
-        } = tent;
-        level.refresh_fine(a, filters, &neighbours, &mut xs, &mut ys, settings)?;
-        level.r.multiply_into(&level.ap, &mut next);
-        levels.push(level);
+        let mut finest = Level::new(Bsr::default(), p, ap);
+        finest.refresh_fine(a, filters, &neighbours, &mut xs, &mut ys, settings)?;
+        let mut next = finest.r.product_pattern(&finest.ap);
+        finest.restrict_operator(&mut next);
+        let mut coarse_modes = tent.modes;
         // Coarse levels, while the level is large and coarsening shrinks it.
+        let mut levels: Vec<Level<MODES>> = Vec::new();
+        let mut previous = finest.b.len();
         loop {
-            let unknowns = next.rows();
-            let previous = levels.last().expect("the finest level").b.len();
+            let unknowns = MODES * next.rows();
             if unknowns <= settings.coarse_unknowns
                 || 5 * unknowns > 4 * previous
-                || levels.len() >= 10
+                || levels.len() >= 9
             {
                 break;
             }
-            let graph = csr_graph(&next, &coarse_nodes);
+            let graph = coarse_graph(&next);
             let (agg, count) = aggregate(&graph, settings.strength);
-            let tent = tentative(&coarse_modes, &coarse_nodes, &agg, count);
-            if tent.t.cols == 0 {
+            if count == 0 {
                 break;
             }
+            let tent = tentative(&coarse_modes, &agg, count);
             let mut at = next.product_pattern(&tent.t);
             next.multiply_into(&tent.t, &mut at);
-            let diagonal: Vec<f64> = (0..unknowns)
-                .map(|i| next.position(i, i).map_or(1.0, |k| next.values[k]))
+            let diagonal: Vec<f64> = (0..next.rows())
+                .flat_map(|i| {
+                    let block = next.position(i, i).map_or(zero(), |k| next.values[k]);
+                    (0..MODES).map(move |r| block[r][r])
+                })
                 .collect();
             let omega = smoothing_weight(&mut |x, y| next.apply(x, y), &diagonal);
             let p = smooth(&tent.t, &at, &diagonal, omega);
             let ap = next.product_pattern(&p);
-            let a_next = std::mem::take(&mut next);
-            let mut level = Level::new(a_next, coarse_nodes, p, ap);
+            let mut level = Level::new(std::mem::take(&mut next), p, ap);
             level.refresh_coarse(settings)?;
             next = level.r.product_pattern(&level.ap);
-            level.r.multiply_into(&level.ap, &mut next);
+            level.restrict_operator(&mut next);
+            previous = unknowns;
             levels.push(level);
-            coarse_nodes = tent.node_ptr;
             coarse_modes = tent.modes;
         }
+        let scalar = next.to_scalar();
         let mut coarsest = Coarsest {
             cholesky: if next.rows() == 0 {
                 None
             } else {
-                Some(ScalarCholesky::new(&next).ok_or(AmgError::TooLarge)?)
+                Some(ScalarCholesky::new(&scalar).ok_or(AmgError::TooLarge)?)
             },
-            x: vec![0.0; next.rows()],
+            x: vec![0.0; MODES * next.rows()],
+            scalar,
             a: next,
         };
         coarsest.factorize()?;
         Ok(Self {
             settings,
             neighbours,
+            fine: finest,
             levels,
             coarsest,
             xs,
@@ -361,21 +372,23 @@ impl Amg {
         let Self {
             settings,
             neighbours,
+            fine: finest,
             levels,
             coarsest,
             xs,
             ys,
         } = self;
-        let count = levels.len();
-        levels[0].refresh_fine(a, filters, neighbours, xs, ys, *settings)?;
-        for l in 0..count {
+        finest.refresh_fine(a, filters, neighbours, xs, ys, *settings)?;
+        finest.restrict_operator(
+            levels
+                .first_mut()
+                .map_or(&mut coarsest.a, |next| &mut next.a),
+        );
+        for l in 0..levels.len() {
             let (head, tail) = levels.split_at_mut(l + 1);
             let level = &mut head[l];
-            if l > 0 {
-                level.refresh_coarse(*settings)?;
-            }
-            let next = tail.first_mut().map_or(&mut coarsest.a, |next| &mut next.a);
-            level.r.multiply_into(&level.ap, next);
+            level.refresh_coarse(*settings)?;
+            level.restrict_operator(tail.first_mut().map_or(&mut coarsest.a, |next| &mut next.a));
         }
         coarsest.factorize()
     }
@@ -396,21 +409,22 @@ impl Amg {
         filters: &[Filter],
     ) -> Result<(), AmgError> {
         let settings = self.settings;
-        self.levels[0].refresh_fine_smoother(a, filters, &mut self.xs, &mut self.ys, settings)
+        self.fine
+            .refresh_fine_smoother(a, filters, &mut self.xs, &mut self.ys, settings)
     }
 
-    /// The number of levels, the coarsest included.
+    /// The number of levels, the finest and the coarsest included.
     #[must_use]
     pub fn level_count(&self) -> usize {
-        self.levels.len() + 1
+        self.levels.len() + 2
     }
 
-    /// The unknowns of each level, finest first.
+    /// The unknowns of each level, finest first; every aggregate of a
+    /// coarse level has six.
     #[must_use]
     pub fn unknowns(&self) -> Vec<usize> {
-        self.levels
-            .iter()
-            .map(|l| l.b.len())
+        std::iter::once(self.fine.b.len())
+            .chain(self.levels.iter().map(|l| l.b.len()))
             .chain(std::iter::once(self.coarsest.x.len()))
             .collect()
     }
@@ -419,22 +433,10 @@ impl Amg {
     /// and vectors; the fine matrix itself is not counted).
     #[must_use]
     pub fn bytes(&self) -> usize {
-        let vectors = |l: &Level| {
-            8 * (l.b.len() + l.x.len() + l.residual.len())
-                + 8 * (l.sweep.r.len() + l.sweep.d.len() + l.sweep.z.len() + l.sweep.q.len())
-        };
-        self.levels
-            .iter()
-            .map(|l| {
-                l.a.bytes()
-                    + l.p.bytes()
-                    + l.r.bytes()
-                    + l.ap.bytes()
-                    + l.inverse.bytes()
-                    + vectors(l)
-            })
-            .sum::<usize>()
+        self.fine.bytes()
+            + self.levels.iter().map(Level::bytes).sum::<usize>()
             + self.coarsest.a.bytes()
+            + 12 * self.coarsest.scalar.values.len()
             + self
                 .coarsest
                 .cholesky
@@ -454,78 +456,42 @@ impl Amg {
         }
     }
 
-    /// One V-cycle from `levels[0].b` into `levels[0].x`.
+    /// One V-cycle from the finest level's `b` into its `x`.
     fn v_cycle(&mut self, a: &BlockMatrix, filters: &[Filter]) {
         let Self {
+            fine: finest,
             levels,
             coarsest,
             xs,
             ys,
             ..
         } = self;
-        let count = levels.len();
-        for l in 0..count {
+        let mut fine_apply = |u: &[f64], v: &mut [f64]| fine::apply(a, filters, u, v, xs, ys);
+        finest.visit(
+            Some(&mut fine_apply),
+            Transfer::Down(
+                levels
+                    .first_mut()
+                    .map_or(&mut coarsest.x, |next| &mut next.b),
+            ),
+        );
+        for l in 0..levels.len() {
             let (head, tail) = levels.split_at_mut(l + 1);
-            let level = &mut head[l];
-            level.x.fill(0.0);
             let next_b = tail.first_mut().map_or(&mut coarsest.x, |next| &mut next.b);
-            let Level {
-                a: matrix,
-                inverse,
-                chebyshev,
-                r,
-                b,
-                x,
-                residual,
-                sweep,
-                ..
-            } = level;
-            let mut apply = |u: &[f64], v: &mut [f64]| {
-                if l == 0 {
-                    fine::apply(a, filters, u, v, xs, ys);
-                } else {
-                    matrix.apply(u, v);
-                }
-            };
-            chebyshev.smooth(&mut apply, inverse, b, x, true, sweep);
-            apply(x, residual);
-            residual
-                .iter_mut()
-                .zip(b.iter())
-                .for_each(|(ri, bi)| *ri = bi - *ri);
-            r.apply(residual, next_b);
+            head[l].visit(None, Transfer::Down(next_b));
         }
         if let Some(cholesky) = &mut coarsest.cholesky {
             cholesky.solve(&mut coarsest.x);
         }
-        for l in (0..count).rev() {
+        for l in (0..levels.len()).rev() {
             let (head, tail) = levels.split_at_mut(l + 1);
-            let level = &mut head[l];
             let next_x = tail.first().map_or(&coarsest.x, |next| &next.x);
-            let Level {
-                a: matrix,
-                inverse,
-                chebyshev,
-                p,
-                b,
-                x,
-                residual,
-                sweep,
-                ..
-            } = level;
-            p.apply(next_x, residual);
-            x.iter_mut()
-                .zip(residual.iter())
-                .for_each(|(xi, ci)| *xi += ci);
-            let mut apply = |u: &[f64], v: &mut [f64]| {
-                if l == 0 {
-                    fine::apply(a, filters, u, v, xs, ys);
-                } else {
-                    matrix.apply(u, v);
-                }
-            };
-            chebyshev.smooth(&mut apply, inverse, b, x, false, sweep);
+            head[l].visit(None, Transfer::Up(next_x));
         }
+        finest.visit(
+            Some(&mut fine_apply),
+            Transfer::Up(levels.first().map_or(&coarsest.x, |next| &next.x)),
+        );
     }
 }
 
@@ -540,28 +506,29 @@ pub struct Cycle<'a> {
 impl Preconditioner for Cycle<'_> {
     fn apply(&self, r: &[Vec3], z: &mut [Vec3]) {
         let mut amg = self.amg.borrow_mut();
-        let fine = &mut amg.levels[0];
-        for (i, ri) in r.iter().enumerate() {
-            fine.b[3 * i..3 * i + 3].copy_from_slice(ri.as_slice());
+        for (b, ri) in amg.fine.b.chunks_exact_mut(3).zip(r) {
+            b.copy_from_slice(ri.as_slice());
         }
         amg.v_cycle(self.a, self.filters);
-        let x = &amg.levels[0].x;
-        for (i, zi) in z.iter_mut().enumerate() {
-            *zi = Vec3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+        for (zi, x) in z.iter_mut().zip(amg.fine.x.chunks_exact(3)) {
+            *zi = Vec3::new(x[0], x[1], x[2]);
         }
     }
 }
 
-impl Level {
-    /// A level with operator `a` (empty on the finest level), nodes
-    /// `node_ptr`, prolongator `p` and the pattern `ap` of `A P`.
-    fn new(a: Csr, node_ptr: Vec<usize>, p: Csr, ap: Csr) -> Self {
-        let n = p.rows();
+/// A product `y = A x` on a level.
+type Apply<'a> = &'a mut dyn FnMut(&[f64], &mut [f64]);
+
+impl<const N: usize> Level<N> {
+    /// A level with operator `a` (empty on the finest level), prolongator
+    /// `p` (a block row per node) and the pattern `ap` of `A P`.
+    fn new(a: Bsr<N, N>, p: Bsr<N, MODES>, ap: Bsr<N, MODES>) -> Self {
+        let n = N * p.rows();
         let r = p.transpose();
         let zeros = || vec![0.0; n];
         Self {
             a,
-            inverse: BlockInverse::new(node_ptr),
+            inverse: BlockInverse::new(p.rows()),
             chebyshev: Chebyshev {
                 low: 0.0,
                 high: 1.0,
@@ -583,6 +550,20 @@ impl Level {
         }
     }
 
+    /// Bytes held by the level's matrices and vectors.
+    fn bytes(&self) -> usize {
+        self.a.bytes()
+            + self.p.bytes()
+            + self.r.bytes()
+            + self.ap.bytes()
+            + self.inverse.bytes()
+            + 8 * (self.b.len() + self.x.len() + self.residual.len() + self.eigenvector.len())
+            + 8 * (self.sweep.r.len()
+                + self.sweep.d.len()
+                + self.sweep.z.len()
+                + self.sweep.q.len())
+    }
+
     /// Power iterations for the smoother's interval: from a pseudo-random
     /// start the first time, warm-started from the last eigenvector after.
     fn iterations(&self) -> usize {
@@ -593,6 +574,78 @@ impl Level {
         }
     }
 
+    /// The next level's Galerkin operator `R (A P)`; an unknown it does
+    /// not couple — an aggregate's padding, whose column of `P` is zero
+    /// (see [`tentative`]) — gets a unit diagonal, so that the operator
+    /// stays positive definite and the padding's correction zero.
+    fn restrict_operator(&self, next: &mut Coarse) {
+        self.r.multiply_into(&self.ap, next);
+        for i in 0..next.rows() {
+            if let Some(k) = next.position(i, i) {
+                let block = &mut next.values[k];
+                for (r, row) in block.iter_mut().enumerate() {
+                    if row[r] == 0.0 {
+                        row[r] = 1.0;
+                    }
+                }
+            }
+        }
+    }
+
+    /// One visit of the V-cycle to the level, with `fine` the product on
+    /// the finest level (`a` on the others): on the way down, pre-smooths
+    /// from zero towards `A x = b` and restricts the residual into the next
+    /// level's right-hand side; on the way up, adds the prolongated
+    /// correction of the next level's solution and post-smooths.
+    fn visit(&mut self, fine: Option<Apply<'_>>, transfer: Transfer<'_>) {
+        let Self {
+            a: matrix,
+            inverse,
+            chebyshev,
+            p,
+            r,
+            b,
+            x,
+            residual,
+            sweep,
+            ..
+        } = self;
+        let mut own = |u: &[f64], v: &mut [f64]| matrix.apply(u, v);
+        let apply: Apply<'_> = match fine {
+            Some(fine) => fine,
+            None => &mut own,
+        };
+        let inverse = |r: &[f64], z: &mut [f64]| inverse.apply(r, z);
+        match transfer {
+            Transfer::Down(next_b) => {
+                x.fill(0.0);
+                chebyshev.smooth(apply, &inverse, b, x, true, sweep);
+                apply(x, residual);
+                residual
+                    .iter_mut()
+                    .zip(b.iter())
+                    .for_each(|(ri, bi)| *ri = bi - *ri);
+                r.apply(residual, next_b);
+            }
+            Transfer::Up(next_x) => {
+                p.apply(next_x, residual);
+                x.iter_mut()
+                    .zip(residual.iter())
+                    .for_each(|(xi, ci)| *xi += ci);
+                chebyshev.smooth(apply, &inverse, b, x, false, sweep);
+            }
+        }
+    }
+}
+
+/// The direction of a visit: the next level's right-hand side to restrict
+/// into, or its solution to prolongate.
+enum Transfer<'a> {
+    Down(&'a mut [f64]),
+    Up(&'a [f64]),
+}
+
+impl Level<3> {
     /// The finest level's block inverses, smoother interval and `Â P`.
     fn refresh_fine(
         &mut self,
@@ -618,9 +671,9 @@ impl Level {
         settings: AmgSettings,
     ) -> Result<(), AmgError> {
         self.inverse
-            .refill(|i, _, out| {
+            .refill(|i, out| {
                 let d = fine::diagonal_block(a, filters, i);
-                out.copy_from_slice(d.as_slice());
+                *out = std::array::from_fn(|r| std::array::from_fn(|c| d[(r, c)]));
             })
             .map_err(AmgError::NotPositiveDefinite)?;
         let inverse = &self.inverse;
@@ -635,19 +688,14 @@ impl Level {
         self.chebyshev = chebyshev(lambda, settings);
         Ok(())
     }
+}
 
+impl Level<MODES> {
     /// A coarse level's block inverses, smoother interval and `A P`.
     fn refresh_coarse(&mut self, settings: AmgSettings) -> Result<(), AmgError> {
         let a = &self.a;
         self.inverse
-            .refill(|_, unknowns, out| {
-                let (lo, k) = (unknowns.start, unknowns.len());
-                for r in unknowns.clone() {
-                    for c in unknowns.clone() {
-                        out[(r - lo) * k + c - lo] = a.position(r, c).map_or(0.0, |p| a.values[p]);
-                    }
-                }
-            })
+            .refill(|node, out| *out = a.position(node, node).map_or(zero(), |k| a.values[k]))
             .map_err(|_| AmgError::CoarseNotPositiveDefinite)?;
         let inverse = &self.inverse;
         let iterations = self.iterations();
@@ -668,9 +716,11 @@ impl Coarsest {
     /// Factorizes the coarsest operator.
     fn factorize(&mut self) -> Result<(), AmgError> {
         match &mut self.cholesky {
-            Some(c) => c
-                .factorize(&self.a)
-                .map_err(|()| AmgError::CoarseNotPositiveDefinite),
+            Some(c) => {
+                self.a.scalar_values(&mut self.scalar.values);
+                c.factorize(&self.scalar)
+                    .map_err(|()| AmgError::CoarseNotPositiveDefinite)
+            }
             None => Ok(()),
         }
     }
@@ -703,43 +753,24 @@ fn smoothing_weight(apply: &mut dyn FnMut(&[f64], &mut [f64]), diagonal: &[f64])
     4.0 / (3.0 * EIGEN_SAFETY * lambda.max(f64::MIN_POSITIVE))
 }
 
-/// The node graph of a coarse level's matrix, nodes owning the unknowns
-/// `node_ptr[I]..node_ptr[I + 1]`.
-fn csr_graph(a: &Csr, node_ptr: &[usize]) -> Graph {
-    let nodes = node_ptr.len() - 1;
-    let mut node_of = vec![0u32; a.rows()];
-    for node in 0..nodes {
-        node_of[node_ptr[node]..node_ptr[node + 1]].fill(node as u32);
-    }
-    let mut sums = vec![0.0; nodes];
-    let mut seen = vec![usize::MAX; nodes];
+/// The node graph of a coarse level's operator: the Frobenius norms of its
+/// blocks.
+fn coarse_graph(a: &Coarse) -> Graph {
+    let norm =
+        |block: &[[f64; MODES]; MODES]| block.iter().flatten().map(|v| v * v).sum::<f64>().sqrt();
     let mut g = Graph {
         ptr: vec![0],
         ..Graph::default()
     };
-    let mut touched = Vec::new();
-    for node in 0..nodes {
-        touched.clear();
-        for row in node_ptr[node]..node_ptr[node + 1] {
-            let (cols, vals) = a.row(row);
-            for (&c, &v) in cols.iter().zip(vals) {
-                let other = node_of[c as usize] as usize;
-                if seen[other] != node {
-                    seen[other] = node;
-                    sums[other] = 0.0;
-                    touched.push(other);
-                }
-                sums[other] += v * v;
-            }
-        }
-        touched.sort_unstable();
+    for node in 0..a.rows() {
         let mut diagonal = 0.0;
-        for &other in &touched {
-            if other == node {
-                diagonal = sums[other].sqrt();
+        let (cols, blocks) = a.row(node);
+        for (&other, block) in cols.iter().zip(blocks) {
+            if other as usize == node {
+                diagonal = norm(block);
             } else {
-                g.adj.push(other as u32);
-                g.weight.push(sums[other].sqrt());
+                g.adj.push(other);
+                g.weight.push(norm(block));
             }
         }
         g.diagonal.push(diagonal);

@@ -2,40 +2,40 @@
 //! aggregate, and its Jacobi smoothing.
 
 use super::aggregation::ISOLATED;
-use super::csr::Csr;
+use super::bsr::{Block, Bsr, zero};
 
 /// Modes of the near-null space: three translations and three rotations.
+/// Every coarse node (aggregate) has this many unknowns.
 pub(crate) const MODES: usize = 6;
 
-/// The tentative prolongator of an aggregation and the coarse near-null
-/// space.
+/// The tentative prolongator of an aggregation of nodes of `N` unknowns
+/// and the coarse near-null space.
 #[derive(Debug)]
-pub(crate) struct Tentative {
+pub(crate) struct Tentative<const N: usize> {
     /// `T`: per aggregate, an orthonormal basis of the near-null space's
-    /// restriction to the aggregate's unknowns.
-    pub(crate) t: Csr,
-    /// The coarse nodes (one per aggregate) and their unknowns: as many as
-    /// the aggregate's basis has vectors (at most six).
-    pub(crate) node_ptr: Vec<usize>,
-    /// The coarse near-null space `R`, with `B|_aggregate = Q R`.
-    pub(crate) modes: Vec<[f64; MODES]>,
+    /// restriction to the aggregate's unknowns, one `N × 6` block per node.
+    pub(crate) t: Bsr<N, MODES>,
+    /// The coarse near-null space `R`, with `B|_aggregate = Q R`: per
+    /// aggregate, row `j` holds the modes of its coarse unknown `j`.
+    pub(crate) modes: Vec<Block<MODES, MODES>>,
 }
 
-/// `T` and the coarse near-null space from the near-null space `modes` (one
-/// row per unknown), the nodes' unknowns `node_ptr`, and the aggregation.
+/// `T` and the coarse near-null space from the near-null space `modes` (the
+/// `N × 6` rows of `B` of each node) and the aggregation.
 ///
 /// On each aggregate the rows of `B` are orthonormalised column by column
 /// (Gram–Schmidt, twice for accuracy): `B|_a = Q_a R_a`, and a column whose
 /// remainder is below `10⁻¹⁰` of the aggregate's largest column is dropped
 /// — constrained unknowns (their rows of `B` filtered to zero) or
-/// aggregates too small to carry all six modes have fewer coarse unknowns.
-pub(crate) fn tentative(
-    modes: &[[f64; MODES]],
-    node_ptr: &[usize],
+/// aggregates too small to carry all six modes span fewer. Every aggregate
+/// keeps six coarse unknowns: a dropped column leaves a zero column of `T`
+/// (and a zero row of `R_a`), an unknown that the coarse operator does not
+/// couple: the Galerkin refill gives it a unit diagonal.
+pub(crate) fn tentative<const N: usize>(
+    modes: &[Block<N, MODES>],
     agg: &[u32],
     aggregates: usize,
-) -> Tentative {
-    let nodes = node_ptr.len() - 1;
+) -> Tentative<N> {
     // Members of each aggregate, in node order.
     let mut start = vec![0usize; aggregates + 1];
     for &a in agg {
@@ -54,24 +54,21 @@ pub(crate) fn tentative(
             next[a as usize] += 1;
         }
     }
-    // Per unknown: its aggregate's first coarse unknown and count, and its
-    // column of Q.
-    let dofs = node_ptr[nodes];
-    let mut q = vec![[0.0; MODES]; dofs];
-    let mut coarse_ptr = vec![0usize];
-    let mut coarse_modes = Vec::new();
-    let mut columns_of = vec![(0usize, 0usize); dofs];
+    let mut blocks: Vec<Block<N, MODES>> = vec![zero(); modes.len()];
+    let mut coarse_modes = Vec::with_capacity(aggregates);
     for a in 0..aggregates {
-        let rows: Vec<usize> = members[start[a]..start[a + 1]]
-            .iter()
-            .flat_map(|&node| node_ptr[node]..node_ptr[node + 1])
-            .collect();
-        let column = |c: usize| -> Vec<f64> { rows.iter().map(|&r| modes[r][c]).collect() };
+        let nodes = &members[start[a]..start[a + 1]];
+        let column = |c: usize| -> Vec<f64> {
+            nodes
+                .iter()
+                .flat_map(|&node| modes[node].iter().map(move |row| row[c]))
+                .collect()
+        };
         let scale = (0..MODES)
             .map(|c| column(c).iter().map(|v| v * v).sum::<f64>().sqrt())
             .fold(0.0, f64::max);
         let mut basis: Vec<Vec<f64>> = Vec::new();
-        let mut r = Vec::new();
+        let mut r: Block<MODES, MODES> = zero();
         for c in 0..MODES {
             let mut v = column(c);
             let mut coefficients = [0.0; MODES];
@@ -88,52 +85,65 @@ pub(crate) fn tentative(
                 v.iter_mut().for_each(|x| *x /= norm);
                 basis.push(v);
             }
-            r.push(coefficients);
-        }
-        let first = *coarse_ptr.last().expect("starts with 0");
-        let k = basis.len();
-        for (row_in, &row) in rows.iter().enumerate() {
-            for (j, b) in basis.iter().enumerate() {
-                q[row][j] = b[row_in];
+            // Column c of R: the coefficients of B's column c.
+            for (row, &coefficient) in r.iter_mut().zip(&coefficients) {
+                row[c] = coefficient;
             }
-            columns_of[row] = (first, k);
         }
-        // Row j of R: the coefficients of the coarse unknown j.
-        coarse_modes.extend((0..k).map(|j| std::array::from_fn(|c| r[c][j])));
-        coarse_ptr.push(first + k);
+        for (m, &node) in nodes.iter().enumerate() {
+            for (j, b) in basis.iter().enumerate() {
+                for (row, block_row) in blocks[node].iter_mut().enumerate() {
+                    block_row[j] = b[N * m + row];
+                }
+            }
+        }
+        coarse_modes.push(r);
     }
-    let mut t = Csr {
-        cols: *coarse_ptr.last().expect("starts with 0"),
-        row_ptr: Vec::with_capacity(dofs + 1),
-        ..Csr::default()
+    let mut t = Bsr {
+        cols: aggregates,
+        row_ptr: Vec::with_capacity(modes.len() + 1),
+        col_idx: Vec::with_capacity(modes.len()),
+        values: Vec::with_capacity(modes.len()),
     };
     t.row_ptr.push(0);
-    for (&(first, k), q_row) in columns_of.iter().zip(&q) {
-        t.col_idx.extend((first..first + k).map(|c| c as u32));
-        t.values.extend_from_slice(&q_row[..k]);
+    for (&a, block) in agg.iter().zip(blocks) {
+        if a != ISOLATED {
+            t.col_idx.push(a);
+            t.values.push(block);
+        }
         t.row_ptr.push(t.col_idx.len());
     }
     Tentative {
         t,
-        node_ptr: coarse_ptr,
         modes: coarse_modes,
     }
 }
 
-/// The smoothed prolongator `P = (I − ω D⁻¹A) T` with `D = diag(A)` and
-/// `ω = 4/(3 λ_max(D⁻¹A))`, from `at = A T`, whose pattern holds `T`'s.
-pub(crate) fn smooth(t: &Csr, at: &Csr, diagonal: &[f64], omega: f64) -> Csr {
+/// The smoothed prolongator `P = (I − ω D⁻¹A) T` with `D = diag(A)` (one
+/// entry per unknown) and `ω = 4/(3 λ_max(D⁻¹A))`, from `at = A T`, whose
+/// pattern holds `T`'s.
+pub(crate) fn smooth<const N: usize>(
+    t: &Bsr<N, MODES>,
+    at: &Bsr<N, MODES>,
+    diagonal: &[f64],
+    omega: f64,
+) -> Bsr<N, MODES> {
     let mut p = at.clone();
-    for (row, d) in diagonal.iter().enumerate() {
-        let scale = -omega / d;
-        let (start, end) = (p.row_ptr[row], p.row_ptr[row + 1]);
-        p.values[start..end].iter_mut().for_each(|v| *v *= scale);
-        let (cols, vals) = t.row(row);
-        for (&c, &v) in cols.iter().zip(vals) {
+    for (node, d) in diagonal.chunks_exact(N).enumerate() {
+        let (start, end) = (p.row_ptr[node], p.row_ptr[node + 1]);
+        for block in &mut p.values[start..end] {
+            for (row, &dr) in block.iter_mut().zip(d) {
+                row.iter_mut().for_each(|v| *v *= -omega / dr);
+            }
+        }
+        let (cols, blocks) = t.row(node);
+        for (&c, tb) in cols.iter().zip(blocks) {
             let k = p
-                .position(row, c as usize)
+                .position(node, c as usize)
                 .expect("A T holds T's pattern: A's diagonal is nonzero");
-            p.values[k] += v;
+            for (row, t_row) in p.values[k].iter_mut().zip(tb) {
+                row.iter_mut().zip(t_row).for_each(|(v, tv)| *v += tv);
+            }
         }
     }
     p
@@ -166,29 +176,38 @@ mod tests {
         for row in &mut modes[6..] {
             row[3..].fill(0.0);
         }
-        let node_ptr = [0, 3, 6, 9];
-        let tent = tentative(&modes, &node_ptr, &[0, 0, 1], 2);
-        assert_eq!(tent.node_ptr, [0, 5, 8]);
-        // TᵀT = I and T R = B.
-        let t = &tent.t;
+        let blocks: Vec<Block<3, MODES>> = modes
+            .chunks_exact(3)
+            .map(|rows| [rows[0], rows[1], rows[2]])
+            .collect();
+        let tent = tentative(&blocks, &[0, 0, 1], 2);
+        assert_eq!(tent.t.cols, 2);
+        // Columns of T as dense rows of 12 coarse unknowns.
         let dense = |row: usize| {
-            let mut out = vec![0.0; t.cols];
-            let (cols, vals) = t.row(row);
-            cols.iter()
-                .zip(vals)
-                .for_each(|(&c, &v)| out[c as usize] = v);
+            let mut out = [0.0; 2 * MODES];
+            let (cols, blocks) = tent.t.row(row / 3);
+            for (&c, block) in cols.iter().zip(blocks) {
+                for (k, v) in block[row % 3].iter().enumerate() {
+                    out[MODES * c as usize + k] = *v;
+                }
+            }
             out
         };
-        for i in 0..t.cols {
-            for j in 0..t.cols {
+        // TᵀT = I on the 5 + 3 unknowns the modes span, 0 on the padding.
+        let spanned = [1.0, 1.0, 1.0, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0];
+        for (i, &on) in spanned.iter().enumerate() {
+            for j in 0..2 * MODES {
                 let g: f64 = (0..9).map(|r| dense(r)[i] * dense(r)[j]).sum();
-                let expected = if i == j { 1.0 } else { 0.0 };
+                let expected = if i == j { on } else { 0.0 };
                 assert!((g - expected).abs() < 1e-12, "({i}, {j}): {g}");
             }
         }
+        // T R = B.
         for (row, mode) in modes.iter().enumerate() {
             for (c, &expected) in mode.iter().enumerate() {
-                let tr: f64 = (0..t.cols).map(|k| dense(row)[k] * tent.modes[k][c]).sum();
+                let tr: f64 = (0..2 * MODES)
+                    .map(|k| dense(row)[k] * tent.modes[k / MODES][k % MODES][c])
+                    .sum();
                 assert!((tr - expected).abs() < 1e-12, "row {row}, mode {c}");
             }
         }

@@ -1,108 +1,82 @@
 //! The multigrid smoother: Chebyshev iteration preconditioned by the
-//! inverses of a level's diagonal node blocks (3x3 on the particles, up to
-//! 6x6 on coarse levels).
+//! inverses of a level's diagonal node blocks (3x3 on the particles, 6x6 on
+//! the aggregates of the coarse levels).
 
-/// The inverses of the diagonal blocks `A_II` of a level, one dense
-/// symmetric block per node, row-major.
+use super::bsr::{Block, zero};
+
+/// The inverses of the diagonal `N × N` blocks `A_II` of a level, one per
+/// node.
 #[derive(Debug, Default)]
-pub(crate) struct BlockInverse {
-    /// Node `I` owns unknowns `node_ptr[I]..node_ptr[I + 1]`.
-    pub(crate) node_ptr: Vec<usize>,
-    /// Node `I`'s inverse starts at `start[I]`.
-    start: Vec<usize>,
-    values: Vec<f64>,
+pub(crate) struct BlockInverse<const N: usize> {
+    values: Vec<Block<N, N>>,
 }
 
-impl BlockInverse {
-    /// Storage for the blocks of the nodes `node_ptr`.
-    pub(crate) fn new(node_ptr: Vec<usize>) -> Self {
-        let mut start = Vec::with_capacity(node_ptr.len());
-        let mut len = 0;
-        for w in node_ptr.windows(2) {
-            start.push(len);
-            len += (w[1] - w[0]) * (w[1] - w[0]);
-        }
+impl<const N: usize> BlockInverse<N> {
+    /// Storage for the blocks of `nodes` nodes.
+    pub(crate) fn new(nodes: usize) -> Self {
         Self {
-            node_ptr,
-            start,
-            values: vec![0.0; len],
+            values: vec![zero(); nodes],
         }
     }
 
     /// Bytes held.
     pub(crate) fn bytes(&self) -> usize {
-        8 * (self.node_ptr.len() + self.start.len() + self.values.len())
+        8 * N * N * self.values.len()
     }
 
-    /// Number of nodes.
-    pub(crate) fn nodes(&self) -> usize {
-        self.start.len()
-    }
-
-    /// Inverts every node's block, read by `block(I, unknowns of I, out)`
-    /// into a row-major `k × k` buffer; returns the first node whose block is
-    /// not positive definite, if any.
-    pub(crate) fn refill(
-        &mut self,
-        block: impl Fn(usize, std::ops::Range<usize>, &mut [f64]),
-    ) -> Result<(), usize> {
-        for node in 0..self.nodes() {
-            let (lo, hi) = (self.node_ptr[node], self.node_ptr[node + 1]);
-            let k = hi - lo;
-            let out = &mut self.values[self.start[node]..self.start[node] + k * k];
-            block(node, lo..hi, out);
-            invert_spd(out, k).ok_or(node)?;
+    /// Inverts every node's block, read by `block(I, out)`; returns the
+    /// first node whose block is not positive definite, if any.
+    pub(crate) fn refill(&mut self, block: impl Fn(usize, &mut Block<N, N>)) -> Result<(), usize> {
+        for (node, out) in self.values.iter_mut().enumerate() {
+            block(node, out);
+            invert_spd(out).ok_or(node)?;
         }
         Ok(())
     }
 
     /// `z = D⁻¹ r`.
     pub(crate) fn apply(&self, r: &[f64], z: &mut [f64]) {
-        for node in 0..self.nodes() {
-            let (lo, hi) = (self.node_ptr[node], self.node_ptr[node + 1]);
-            let k = hi - lo;
-            let inv = &self.values[self.start[node]..self.start[node] + k * k];
-            for (a, za) in z[lo..hi].iter_mut().enumerate() {
-                *za = inv[a * k..(a + 1) * k]
-                    .iter()
-                    .zip(&r[lo..hi])
-                    .map(|(m, x)| m * x)
-                    .sum();
+        for ((inv, ri), zi) in self
+            .values
+            .iter()
+            .zip(r.chunks_exact(N))
+            .zip(z.chunks_exact_mut(N))
+        {
+            for (za, row) in zi.iter_mut().zip(inv) {
+                *za = row.iter().zip(ri).map(|(m, x)| m * x).sum();
             }
         }
     }
 }
 
-/// Inverts the symmetric positive-definite `k × k` row-major matrix `m` in
-/// place (Cholesky `L Lᵀ`, then `L⁻ᵀ L⁻¹`); `None` if it is not positive
-/// definite.
-fn invert_spd(m: &mut [f64], k: usize) -> Option<()> {
-    let mut l = [0.0; 36];
-    for j in 0..k {
-        let d = m[j * k + j] - (0..j).map(|p| l[j * 6 + p] * l[j * 6 + p]).sum::<f64>();
+/// Inverts the symmetric positive-definite block `m` in place (Cholesky
+/// `L Lᵀ`, then `L⁻ᵀ L⁻¹`); `None` if it is not positive definite.
+fn invert_spd<const N: usize>(m: &mut Block<N, N>) -> Option<()> {
+    let mut l: Block<N, N> = zero();
+    for j in 0..N {
+        let d = m[j][j] - (0..j).map(|p| l[j][p] * l[j][p]).sum::<f64>();
         if !(d > 0.0 && d.is_finite()) {
             return None;
         }
-        l[j * 6 + j] = d.sqrt();
-        for i in j + 1..k {
-            let s = m[i * k + j] - (0..j).map(|p| l[i * 6 + p] * l[j * 6 + p]).sum::<f64>();
-            l[i * 6 + j] = s / l[j * 6 + j];
+        l[j][j] = d.sqrt();
+        for i in j + 1..N {
+            let s = m[i][j] - (0..j).map(|p| l[i][p] * l[j][p]).sum::<f64>();
+            l[i][j] = s / l[j][j];
         }
     }
-    // Columns of L⁻¹ by forward substitution, then M⁻¹ = L⁻ᵀ L⁻¹.
-    let mut inv_l = [0.0; 36];
-    for c in 0..k {
-        for i in c..k {
-            let s = if i == c { 1.0 } else { 0.0 }
-                - (c..i).map(|p| l[i * 6 + p] * inv_l[p * 6 + c]).sum::<f64>();
-            inv_l[i * 6 + c] = s / l[i * 6 + i];
+    // Column c of L⁻¹ by forward substitution, as row c of w; then
+    // M⁻¹ = L⁻ᵀ L⁻¹, (M⁻¹)_ij = Σ_p w_ip w_jp.
+    let mut w: Block<N, N> = zero();
+    for (c, column) in w.iter_mut().enumerate() {
+        for i in c..N {
+            let s =
+                if i == c { 1.0 } else { 0.0 } - (c..i).map(|p| l[i][p] * column[p]).sum::<f64>();
+            column[i] = s / l[i][i];
         }
     }
-    for i in 0..k {
-        for j in 0..k {
-            m[i * k + j] = (i.max(j)..k)
-                .map(|p| inv_l[p * 6 + i] * inv_l[p * 6 + j])
-                .sum();
+    for (i, row) in m.iter_mut().enumerate() {
+        for (j, entry) in row.iter_mut().enumerate() {
+            *entry = (i.max(j)..N).map(|p| w[i][p] * w[j][p]).sum();
         }
     }
     Some(())
@@ -195,7 +169,7 @@ impl Chebyshev {
     pub(crate) fn smooth(
         &self,
         apply: &mut dyn FnMut(&[f64], &mut [f64]),
-        inverse: &BlockInverse,
+        inverse: &dyn Fn(&[f64], &mut [f64]),
         b: &[f64],
         x: &mut [f64],
         zero: bool,
@@ -212,7 +186,7 @@ impl Chebyshev {
                 .zip(b.iter().zip(q.iter()))
                 .for_each(|(ri, (bi, qi))| *ri = bi - qi);
         }
-        inverse.apply(r, z);
+        inverse(r, z);
         d.iter_mut()
             .zip(z.iter())
             .for_each(|(di, zi)| *di = zi / theta);
@@ -224,7 +198,7 @@ impl Chebyshev {
             }
             apply(d, q);
             r.iter_mut().zip(q.iter()).for_each(|(ri, qi)| *ri -= qi);
-            inverse.apply(r, z);
+            inverse(r, z);
             let next = 1.0 / (2.0 * theta / delta - rho);
             let (a, c) = (next * rho, 2.0 * next / delta);
             d.iter_mut()
@@ -241,22 +215,17 @@ mod tests {
 
     #[test]
     fn block_inverse_inverts_and_refuses_indefinite_blocks() {
-        let mut inverse = BlockInverse::new(vec![0, 2, 3]);
-        let blocks = [vec![4.0, 1.0, 1.0, 3.0], vec![2.0]];
-        inverse
-            .refill(|i, _, out| out.copy_from_slice(&blocks[i]))
-            .unwrap();
-        let mut z = vec![0.0; 3];
-        inverse.apply(&[5.0, 4.0, 1.0], &mut z);
+        let mut inverse = BlockInverse::<2>::new(2);
+        let blocks = [[[4.0, 1.0], [1.0, 3.0]], [[2.0, 0.0], [0.0, 4.0]]];
+        inverse.refill(|i, out| *out = blocks[i]).unwrap();
+        let mut z = vec![0.0; 4];
+        inverse.apply(&[5.0, 4.0, 1.0, 2.0], &mut z);
         // [[4, 1], [1, 3]] (1, 1) = (5, 4).
-        for (zi, expected) in z.iter().zip([1.0, 1.0, 0.5]) {
+        for (zi, expected) in z.iter().zip([1.0, 1.0, 0.5, 0.5]) {
             assert!((zi - expected).abs() < 1e-14);
         }
-        let indefinite = [vec![1.0, 2.0, 2.0, 1.0], vec![2.0]];
-        assert_eq!(
-            inverse.refill(|i, _, out| out.copy_from_slice(&indefinite[i])),
-            Err(0)
-        );
+        let indefinite = [[[1.0, 0.0], [0.0, 1.0]], [[1.0, 2.0], [2.0, 1.0]]];
+        assert_eq!(inverse.refill(|i, out| *out = indefinite[i]), Err(1));
     }
 
     /// The 1-D Laplacian tridiag(−1, 2, −1) of size n has eigenvalues
@@ -273,8 +242,8 @@ mod tests {
                 y[i] = 2.0 * x[i] - left - right;
             }
         };
-        let mut inverse = BlockInverse::new((0..=n).collect());
-        inverse.refill(|_, _, out| out[0] = 2.0).unwrap();
+        let mut inverse = BlockInverse::<1>::new(n);
+        inverse.refill(|_, out| out[0][0] = 2.0).unwrap();
         let exact = 1.0 + (std::f64::consts::PI / (n as f64 + 1.0)).cos();
         let estimate = largest_eigenvalue(
             &mut apply,
@@ -308,7 +277,14 @@ mod tests {
             q: vec![0.0; n],
         };
         for k in 0..3 {
-            smoother.smooth(&mut apply, &inverse, &b, &mut x, k == 0, &mut sweep);
+            smoother.smooth(
+                &mut apply,
+                &|r, z| inverse.apply(r, z),
+                &b,
+                &mut x,
+                k == 0,
+                &mut sweep,
+            );
         }
         let error = x
             .iter()
