@@ -68,6 +68,10 @@ pub enum LinearSolver {
     /// it loses), each to the default [`PcgSettings`] tolerance; an
     /// iterative candidate is kept only if it takes at most
     /// [`LinearSolver::AUTO_ITERATIVE_MARGIN`] of the factorization's time.
+    /// An iterative choice made over an affordable factor falls back to
+    /// it: a solve that stops at its iteration cap is solved again by the
+    /// factorization, which then serves the rest of the run, so that `auto`
+    /// never leaves a capped solve where a factor fits.
     /// The choice is reported in [`StepReport::linear_solver`]. As it rests
     /// on timings it can differ between machines, and between runs where
     /// two candidates cost about the same: a run that must be reproducible
@@ -117,7 +121,10 @@ impl LinearSolver {
     /// grows with it.
     /// On a 50×50 sheet at `k = 10⁴ N/m`, `h = 0.1 s` the trial timed
     /// multigrid at 6.2 ms against the factor's 6.5 ms, and two of the
-    /// run's 136 multigrid solves then stopped at their iteration cap.
+    /// run's 136 multigrid solves then stopped at their iteration cap. The
+    /// margin alone cannot rule that out — once multigrid's solves became
+    /// faster the same sheet chose it again, under load — so such a solve
+    /// now falls back to the factorization (see [`LinearSolver::Auto`]).
     pub const AUTO_ITERATIVE_MARGIN: f64 = 0.8;
 
     /// The solver's name as the scene files and reports spell it: `"pcg"`,
@@ -234,6 +241,10 @@ pub(crate) struct Topology {
     /// Whether the next [`LinearSolver::LaggedCholesky`] solve factorizes.
     refactor: bool,
     amg: AmgState,
+    /// Whether an iterative solve that stops at its cap falls back to the
+    /// factorization: when [`LinearSolver::Auto`] chose the iterative
+    /// solver over an affordable factor.
+    fallback: bool,
 }
 
 impl Topology {
@@ -304,6 +315,7 @@ pub(crate) fn topology<'a>(
             cholesky,
             refactor: true,
             amg: AmgState::default(),
+            fallback: false,
         });
     }
     Ok(cached.as_mut().expect("built above"))
@@ -360,7 +372,7 @@ impl Solve<'_> {
             ..
         } = self;
         if topology.solver == Choice::Trial {
-            topology.solver = trial(topology, positions, workspace, time)?;
+            (topology.solver, topology.fallback) = trial(topology, positions, workspace, time)?;
         }
         let Topology {
             matrix,
@@ -370,6 +382,7 @@ impl Solve<'_> {
             cholesky,
             refactor,
             amg,
+            fallback,
             ..
         } = topology;
         report.force_evaluations += 1;
@@ -400,13 +413,18 @@ impl Solve<'_> {
             report.linear_residual = report.linear_residual.max(info.residual);
             Ok(info)
         };
+        // The stopped solve of an iterative choice that falls back.
+        let mut capped = None;
         match *solver {
             Choice::Pcg(settings) => {
                 let settings = settings.loosened(forcing);
-                pcg(
-                    cg::solve(matrix, jacobi, filters, b, x, settings, workspace),
-                    report,
-                )?;
+                let solved = cg::solve(matrix, jacobi, filters, b, x, settings, workspace);
+                match solved {
+                    Err(PcgError::NoConvergence(info)) if *fallback => capped = Some(info),
+                    solved => {
+                        pcg(solved, report)?;
+                    }
+                }
             }
             Choice::Amg(settings) => {
                 let not_positive_definite = |e: AmgError| match e {
@@ -448,14 +466,17 @@ impl Solve<'_> {
                 };
                 let cycle = hierarchy.cycle(matrix, filters);
                 let loosened = settings.loosened(forcing);
-                let info = pcg(
-                    cg::solve(matrix, &cycle, filters, b, x, loosened, workspace),
-                    report,
-                )?;
-                // CG's iterations grow like the logarithm of the tolerance:
-                // a loosened solve's count is scaled to the settings' one.
-                let scale = settings.tolerance().ln() / loosened.tolerance().ln();
-                amg.after(renewal, (info.iterations as f64 * scale).ceil() as usize);
+                match cg::solve(matrix, &cycle, filters, b, x, loosened, workspace) {
+                    Err(PcgError::NoConvergence(info)) if *fallback => capped = Some(info),
+                    solved => {
+                        let info = pcg(solved, report)?;
+                        // CG's iterations grow like the logarithm of the
+                        // tolerance: a loosened solve's count is scaled to
+                        // the settings' one.
+                        let scale = settings.tolerance().ln() / loosened.tolerance().ln();
+                        amg.after(renewal, (info.iterations as f64 * scale).ceil() as usize);
+                    }
+                }
             }
             Choice::Lagged(settings) => {
                 let factor = cholesky
@@ -485,14 +506,26 @@ impl Solve<'_> {
                 solved?;
             }
             Choice::Trial => unreachable!("the trial resolved the choice above"),
-            Choice::Cholesky => {
-                let factor = cholesky
-                    .as_mut()
-                    .expect("built with the topology for this solver");
-                factor
-                    .solve(matrix, filters, b, x)
-                    .map_err(|particle| StepError::NotPositiveDefinite { time, particle })?;
-            }
+            Choice::Cholesky => {}
+        }
+        if let Some(info) = capped {
+            // Auto's iterative choice stopped at its cap where a factor is
+            // affordable: the factorization solves this system and the
+            // rest of the run.
+            report.linear_iterations += info.iterations;
+            report.linear_solver = Choice::Cholesky.name();
+            *solver = Choice::Cholesky;
+            *fallback = false;
+            *amg = AmgState::default();
+            *cholesky = Some(SparseCholesky::new(matrix)?);
+        }
+        if *solver == Choice::Cholesky {
+            let factor = cholesky
+                .as_mut()
+                .expect("built with the topology for this solver");
+            factor
+                .solve(matrix, filters, b, x)
+                .map_err(|particle| StepError::NotPositiveDefinite { time, particle })?;
         }
         Ok(())
     }
@@ -502,8 +535,10 @@ impl Solve<'_> {
 /// assembled, `S A y = S r`, for a right-hand side `r` of pseudo-random
 /// components in `[−1, 1]` with each candidate ([`second_run`] timing
 /// it), keeps what the chosen one built (the factor or the hierarchy) and
-/// returns it: the fastest, but an iterative candidate only within
-/// [`LinearSolver::AUTO_ITERATIVE_MARGIN`] of the factorization's time. A
+/// returns it — the fastest, but an iterative candidate only within
+/// [`LinearSolver::AUTO_ITERATIVE_MARGIN`] of the factorization's time —
+/// and whether it falls back to the factorization (an iterative choice
+/// where the factor is affordable). A
 /// right-hand side of every frequency tries each preconditioner as
 /// the later Newton systems will, where the step's own one may be smooth
 /// (a cloth at rest under gravity) and flatter a preconditioner that only
@@ -518,7 +553,7 @@ fn trial(
     positions: &[Vec3],
     workspace: &mut PcgWorkspace,
     time: f64,
-) -> Result<Choice, StepError> {
+) -> Result<(Choice, bool), StepError> {
     let Topology {
         matrix,
         jacobi,
@@ -622,7 +657,7 @@ fn trial(
     if !matches!(best, Choice::Amg(_)) {
         *amg = AmgState::default();
     }
-    Ok(best)
+    Ok((best, affordable && best != Choice::Cholesky))
 }
 
 /// Runs `solve` twice and times the second run, which finds in place the
@@ -633,4 +668,76 @@ fn second_run<T, E>(mut solve: impl FnMut() -> Result<T, E>) -> Result<(T, Durat
     let clock = Instant::now();
     let out = solve()?;
     Ok((out, clock.elapsed()))
+}
+
+#[cfg(test)]
+mod tests {
+    use hooke_core::CompressedSprings;
+    use hooke_core::reference::Sheet;
+
+    use super::*;
+
+    /// The trial leaves an iterative choice with the fallback on when the
+    /// factor is affordable; here block-Jacobi PCG capped at one iteration
+    /// stands for a choice that stops at its cap later in a run. In strict
+    /// mode a capped solve is an error, so only the fallback lets the
+    /// solve succeed: with the factorization, to the factorization's
+    /// accuracy, and for the rest of the run.
+    #[test]
+    fn an_iterative_choice_that_stops_at_its_cap_falls_back_to_the_factorization() {
+        let system = Sheet::new(12).system().unwrap();
+        let mut state = system.initial_state();
+        for (i, v) in state.velocities_mut().iter_mut().enumerate() {
+            *v = Vec3::new((i as f64).sin(), (3.0 * i as f64).cos(), 0.0);
+        }
+        let n = system.particle_count();
+        let capped = PcgSettings::new(1e-10, 1).unwrap();
+        let mut cached = None;
+        let topology = topology(&mut cached, LinearSolver::Pcg(capped), &system).unwrap();
+        topology.fallback = true;
+        let h = 0.01;
+        let u: Vec<Vec3> = state.velocities().iter().map(|v| h * v).collect();
+        let lin = Linearization {
+            positions: state.positions(),
+            velocities: state.velocities(),
+            displacement: Some(&u),
+            inertia: &vec![Vec3::zeros(); n],
+            beta_h: h,
+            compressed: CompressedSprings::Clamped,
+            freeze_directions: true,
+        };
+        let solve = Solve {
+            system: &system,
+            strict: true,
+            time: 0.0,
+            forcing: 0.0,
+        };
+        let mut b = vec![Vec3::zeros(); n];
+        solve
+            .assemble(&mut Assembler::default(), topology, &lin, &mut b)
+            .unwrap();
+        let mut x = vec![Vec3::zeros(); n];
+        let mut report = StepReport::default();
+        solve
+            .solve(
+                topology,
+                state.positions(),
+                &b,
+                &mut x,
+                &mut PcgWorkspace::default(),
+                &mut report,
+            )
+            .unwrap();
+        assert_eq!(report.linear_solver, "cholesky");
+        assert_eq!((report.linear_solves, report.linear_iterations), (1, 1));
+        assert_eq!(report.unconverged_solves, 0);
+        assert_eq!(topology.solver, Choice::Cholesky);
+        assert!(!topology.fallback);
+        let mut ax = vec![Vec3::zeros(); n];
+        topology.matrix().apply(&x, &mut ax);
+        let scale = b.iter().map(|bi| bi.norm()).fold(0.0, f64::max);
+        for i in (0..n).filter(|&i| !system.is_pinned(i)) {
+            assert!((ax[i] - b[i]).norm() < 1e-10 * scale, "particle {i}");
+        }
+    }
 }
