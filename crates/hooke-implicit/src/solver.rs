@@ -459,10 +459,15 @@ impl Solve<'_> {
                             .map_err(not_positive_definite)?;
                         hierarchy
                     }
-                    (slot, _) => slot.insert(
-                        Amg::build(matrix, filters, positions, AmgSettings::default())
-                            .map_err(not_positive_definite)?,
-                    ),
+                    (slot, _) => {
+                        // The old hierarchy goes first: two at once would
+                        // double the solver's peak memory.
+                        *slot = None;
+                        slot.insert(
+                            Amg::build(matrix, filters, positions, AmgSettings::default())
+                                .map_err(not_positive_definite)?,
+                        )
+                    }
                 };
                 let cycle = hierarchy.cycle(matrix, filters);
                 let loosened = settings.loosened(forcing);
