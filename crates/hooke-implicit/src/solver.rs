@@ -85,8 +85,8 @@ pub enum LinearSolver {
     /// a rule by size alone cannot tell these apart, and `auto` keeps the
     /// fastest on both. Where two candidates' solves cost about the same
     /// the trial can keep the one that is slower per step: on the issue's
-    /// 200×200 cloth swinging from its pins it keeps the factor (11.3 s per
-    /// step) where multigrid takes 8.9 s, as multigrid's solves in a step
+    /// 200×200 cloth swinging from its pins it keeps the factor (7.1 s per
+    /// step) where multigrid takes 6.4 s, as multigrid's solves in a step
     /// are inexact ([`Implicit::with_inexact_newton`](crate::Implicit::with_inexact_newton))
     /// and cost less than the trial's exact one.
     /// [`LinearSolver::LaggedCholesky`] is not a candidate: its worth shows
