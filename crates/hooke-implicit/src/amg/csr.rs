@@ -15,4 +15,9 @@ impl Csr {
     pub(crate) fn rows(&self) -> usize {
         self.row_ptr.len() - 1
     }
+
+    /// Bytes held by the index and value arrays.
+    pub(crate) fn bytes(&self) -> usize {
+        8 * self.row_ptr.len() + 4 * self.col_idx.len() + 8 * self.values.len()
+    }
 }

@@ -436,7 +436,7 @@ impl Amg {
         self.fine.bytes()
             + self.levels.iter().map(Level::bytes).sum::<usize>()
             + self.coarsest.a.bytes()
-            + 12 * self.coarsest.scalar.values.len()
+            + self.coarsest.scalar.bytes()
             + self
                 .coarsest
                 .cholesky
