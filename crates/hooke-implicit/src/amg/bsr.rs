@@ -17,8 +17,7 @@ use super::csr::Csr;
 /// the workers.
 ///
 /// [`PARALLEL_MIN_PARTICLES`]: crate::PARALLEL_MIN_PARTICLES
-#[cfg(feature = "parallel")]
-const PARALLEL_MIN_ROWS: usize = 512;
+pub(crate) const PARALLEL_MIN_ROWS: usize = 512;
 
 /// A dense `R × C` block, row-major.
 pub(crate) type Block<const R: usize, const C: usize> = [[f64; C]; R];
@@ -80,7 +79,7 @@ impl<const R: usize, const C: usize> Bsr<R, C> {
             }
             out.copy_from_slice(&sum);
         };
-        for_each_block(y, R, row);
+        for_each_block(y, R, PARALLEL_MIN_ROWS, row);
     }
 
     /// The pattern of `self · other` with zero values; [`Bsr::multiply_into`]
@@ -225,21 +224,28 @@ pub(crate) fn add_product<const R: usize, const C: usize, const K: usize>(
 }
 
 /// Calls `f(i, &mut out[width i..width (i + 1)])` for every block row `i`,
-/// in parallel for long vectors.
+/// in parallel from `parallel_from` block rows: [`PARALLEL_MIN_ROWS`] for a
+/// sparse product's rows, [`PARALLEL_MIN_PARTICLES`] for a few operations
+/// per row.
+///
+/// [`PARALLEL_MIN_PARTICLES`]: crate::PARALLEL_MIN_PARTICLES
 pub(crate) fn for_each_block(
     out: &mut [f64],
     width: usize,
+    parallel_from: usize,
     f: impl Fn(usize, &mut [f64]) + Sync + Send,
 ) {
     #[cfg(feature = "parallel")]
-    if out.len() >= width * PARALLEL_MIN_ROWS {
+    if out.len() >= width * parallel_from {
         use rayon::prelude::*;
         out.par_chunks_mut(width)
             .enumerate()
-            .with_min_len(PARALLEL_MIN_ROWS / 2)
+            .with_min_len(parallel_from / 2)
             .for_each(|(i, o)| f(i, o));
         return;
     }
+    #[cfg(not(feature = "parallel"))]
+    let _ = parallel_from;
     for (i, o) in out.chunks_mut(width).enumerate() {
         f(i, o);
     }

@@ -4,11 +4,12 @@
 use hooke_core::{Mat3, Vec3};
 
 use super::aggregation::Graph;
-use super::bsr::{Block, Bsr, for_each_row_slice, zero};
+use super::bsr::{Block, Bsr, for_each_block, for_each_row_slice, zero};
 use super::prolongation::MODES;
 use crate::filter::Filter;
 use crate::matrix::BlockMatrix;
 use crate::pattern::Pattern;
+use crate::vector::{PARALLEL_MIN_PARTICLES, for_each_row};
 
 /// Each particle's neighbours through a spring, in increasing order, with
 /// the spring's slot: the block rows of `A` without the diagonal.
@@ -94,15 +95,16 @@ pub(crate) fn apply(
     xs: &mut [Vec3],
     ys: &mut [Vec3],
 ) {
-    for (i, (xi, f)) in xs.iter_mut().zip(filters).enumerate() {
-        *xi = f.apply(Vec3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2]));
-    }
+    for_each_row(xs, |i, xi| {
+        *xi = filters[i].apply(Vec3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2]));
+    });
     a.apply(xs, ys);
-    for (i, (yi, f)) in ys.iter().zip(filters).enumerate() {
+    let ys = &*ys;
+    for_each_block(y, 3, PARALLEL_MIN_PARTICLES, |i, yi| {
+        let f = filters[i];
         let xi = Vec3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-        let out = f.apply(*yi) + xi - f.apply(xi);
-        y[3 * i..3 * i + 3].copy_from_slice(out.as_slice());
-    }
+        yi.copy_from_slice((f.apply(ys[i]) + xi - f.apply(xi)).as_slice());
+    });
 }
 
 /// The particle graph with the norms of `Â`'s blocks.

@@ -39,7 +39,8 @@
 //! # The cycle
 //!
 //! One V-cycle per preconditioner application: on every level a Chebyshev
-//! sweep of degree [`AmgSettings::smoother_degree`] preconditioned by the
+//! sweep (of degree [`AmgSettings::fine_degree`] on the particles,
+//! [`AmgSettings::coarse_degree`] on the coarse levels) preconditioned by the
 //! inverses of the diagonal node blocks (3x3 per particle; on coarse levels
 //! the 6x6 blocks of an aggregate's unknowns), on the interval
 //! `[1.1 λ̂/30, 1.1 λ̂]` of `D⁻¹Â` (`λ̂` a power-iteration estimate),
@@ -75,7 +76,7 @@ use std::cell::RefCell;
 use hooke_core::{ParameterError, Vec3};
 
 use self::aggregation::{Graph, aggregate, strong_mask};
-use self::bsr::{Bsr, zero};
+use self::bsr::{Bsr, for_each_block, zero};
 use self::coarse::ScalarCholesky;
 use self::csr::Csr;
 use self::fine::Neighbours;
@@ -84,21 +85,25 @@ use self::smoother::{BlockInverse, Chebyshev, Sweep, largest_eigenvalue};
 use crate::cg::Preconditioner;
 use crate::filter::Filter;
 use crate::matrix::BlockMatrix;
+use crate::vector::{PARALLEL_MIN_PARTICLES, for_each_row};
 
 /// Parameters of the multigrid hierarchy and cycle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AmgSettings {
     strength: f64,
     filter: f64,
-    smoother_degree: usize,
+    fine_degree: usize,
+    coarse_degree: usize,
     coarse_unknowns: usize,
 }
 
 impl AmgSettings {
     /// Strength threshold `θ` in `[0, 1)` of the aggregation, threshold
     /// `θ_F` in `[0, 1)` of the filtered matrix that smooths the finest
-    /// prolongator, Chebyshev degree of each smoothing sweep (at least 1)
-    /// and the size of the coarsest level (at least 6 unknowns).
+    /// prolongator, Chebyshev degree of each smoothing sweep on every level
+    /// (at least 1; [`AmgSettings::with_fine_degree`] sets the finest
+    /// level's apart) and the size of the coarsest level (at least 6
+    /// unknowns).
     ///
     /// # Errors
     /// [`ParameterError`] for a value outside those ranges.
@@ -113,14 +118,7 @@ impl AmgSettings {
                 return Err(ParameterError::new("amg", name, value, "in [0, 1)"));
             }
         }
-        if smoother_degree == 0 {
-            return Err(ParameterError::new(
-                "amg",
-                "smoother_degree",
-                0.0,
-                "at least 1",
-            ));
-        }
+        check_degree("smoother_degree", smoother_degree)?;
         if coarse_unknowns < MODES {
             return Err(ParameterError::new(
                 "amg",
@@ -132,8 +130,22 @@ impl AmgSettings {
         Ok(Self {
             strength,
             filter,
-            smoother_degree,
+            fine_degree: smoother_degree,
+            coarse_degree: smoother_degree,
             coarse_unknowns,
+        })
+    }
+
+    /// The same settings with Chebyshev sweeps of `degree` on the finest
+    /// level.
+    ///
+    /// # Errors
+    /// [`ParameterError`] if `degree` is 0.
+    pub fn with_fine_degree(self, degree: usize) -> Result<Self, ParameterError> {
+        check_degree("fine_degree", degree)?;
+        Ok(Self {
+            fine_degree: degree,
+            ..self
         })
     }
 
@@ -151,10 +163,18 @@ impl AmgSettings {
         self.filter
     }
 
-    /// The Chebyshev degree of each pre- and post-smoothing sweep.
+    /// The Chebyshev degree of each pre- and post-smoothing sweep on the
+    /// finest level, the particles.
     #[must_use]
-    pub fn smoother_degree(&self) -> usize {
-        self.smoother_degree
+    pub fn fine_degree(&self) -> usize {
+        self.fine_degree
+    }
+
+    /// The Chebyshev degree of each pre- and post-smoothing sweep on the
+    /// coarse levels.
+    #[must_use]
+    pub fn coarse_degree(&self) -> usize {
+        self.coarse_degree
     }
 
     /// The largest number of unknowns solved directly on the coarsest level.
@@ -164,21 +184,36 @@ impl AmgSettings {
     }
 }
 
+/// A Chebyshev degree, at least 1.
+fn check_degree(name: &'static str, degree: usize) -> Result<(), ParameterError> {
+    if degree == 0 {
+        return Err(ParameterError::new("amg", name, 0.0, "at least 1"));
+    }
+    Ok(())
+}
+
 impl Default for AmgSettings {
     /// `θ = 0` (aggregates of every coupled neighbour: on a cloth with
     /// bending springs, a particle's neighbours two apart), `θ_F = 0.1`
-    /// (on the cloth, stretch springs only), Chebyshev degree 2, a
-    /// coarsest level of at most 2 000 unknowns. Measured on cloth of
-    /// 100² … 1000² particles (`benches/README.md`): against
-    /// `θ = θ_F ∈ {0.02, 0.08}`, a third fewer coarse unknowns and half the
-    /// coarse operators' entries for a few more iterations and faster
-    /// solves; against degree 1, iterations that grow 1.4× instead of 1.8×
-    /// from 100² to 1000² (21 → 30 against 24 → 43).
+    /// (on the cloth, stretch springs only), Chebyshev degree 1 on
+    /// the particles and 2 on the coarse levels, a coarsest level of at
+    /// most 2 000 unknowns. Measured on cloth of 100² … 1000² particles
+    /// (`benches/README.md`): against `θ = θ_F ∈ {0.02, 0.08}`, a third
+    /// fewer coarse unknowns and half the coarse operators' entries for a
+    /// few more iterations and faster solves; against degree 1 everywhere,
+    /// iterations that grow 1.3× instead of 1.8× from 100² to 1000²;
+    /// against degree 2 everywhere, on the nearly flat cloth as many
+    /// iterations within four, each with three products of the fine matrix
+    /// instead of five, so solves 1.1–1.6× faster (more at larger sizes).
+    /// On a curved, swinging cloth degree 2 on the particles saves more
+    /// iterations (35 against 53 at 100²) and is as fast at 200², 1.2×
+    /// slower at 400²; on a tetrahedral lattice it halves them.
     fn default() -> Self {
         Self {
             strength: 0.0,
             filter: 0.1,
-            smoother_degree: 2,
+            fine_degree: 1,
+            coarse_degree: 2,
             coarse_unknowns: 2000,
         }
     }
@@ -506,13 +541,14 @@ pub struct Cycle<'a> {
 impl Preconditioner for Cycle<'_> {
     fn apply(&self, r: &[Vec3], z: &mut [Vec3]) {
         let mut amg = self.amg.borrow_mut();
-        for (b, ri) in amg.fine.b.chunks_exact_mut(3).zip(r) {
-            b.copy_from_slice(ri.as_slice());
-        }
+        for_each_block(&mut amg.fine.b, 3, PARALLEL_MIN_PARTICLES, |i, b| {
+            b.copy_from_slice(r[i].as_slice());
+        });
         amg.v_cycle(self.a, self.filters);
-        for (zi, x) in z.iter_mut().zip(amg.fine.x.chunks_exact(3)) {
-            *zi = Vec3::new(x[0], x[1], x[2]);
-        }
+        let x = &amg.fine.x;
+        for_each_row(z, |i, zi| {
+            *zi = Vec3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2])
+        });
     }
 }
 
@@ -685,7 +721,7 @@ impl Level<3> {
             self.b.len(),
             iterations,
         );
-        self.chebyshev = chebyshev(lambda, settings);
+        self.chebyshev = chebyshev(lambda, settings.fine_degree);
         Ok(())
     }
 }
@@ -706,7 +742,7 @@ impl Level<MODES> {
             self.b.len(),
             iterations,
         );
-        self.chebyshev = chebyshev(lambda, settings);
+        self.chebyshev = chebyshev(lambda, settings.coarse_degree);
         self.a.multiply_into(&self.p, &mut self.ap);
         Ok(())
     }
@@ -726,13 +762,13 @@ impl Coarsest {
     }
 }
 
-/// The smoother on `[1.1 λ̂/30, 1.1 λ̂]`.
-fn chebyshev(lambda: f64, settings: AmgSettings) -> Chebyshev {
+/// The smoother of `degree` on `[1.1 λ̂/30, 1.1 λ̂]`.
+fn chebyshev(lambda: f64, degree: usize) -> Chebyshev {
     let high = EIGEN_SAFETY * lambda.max(f64::MIN_POSITIVE);
     Chebyshev {
         low: high / CHEBYSHEV_RATIO,
         high,
-        degree: settings.smoother_degree,
+        degree,
     }
 }
 
@@ -777,4 +813,28 @@ fn coarse_graph(a: &Coarse) -> Graph {
         g.ptr.push(g.adj.len());
     }
     g
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settings_name_the_parameter_out_of_range_and_set_the_finest_degree_apart() {
+        let settings = AmgSettings::new(0.0, 0.1, 3, 100).unwrap();
+        assert_eq!((settings.fine_degree(), settings.coarse_degree()), (3, 3));
+        let settings = settings.with_fine_degree(1).unwrap();
+        assert_eq!((settings.fine_degree(), settings.coarse_degree()), (1, 3));
+        let defaults = AmgSettings::default();
+        assert_eq!((defaults.fine_degree(), defaults.coarse_degree()), (1, 2));
+        for (error, parameter) in [
+            (settings.with_fine_degree(0), "fine_degree"),
+            (AmgSettings::new(0.0, 0.1, 0, 100), "smoother_degree"),
+            (AmgSettings::new(1.0, 0.1, 2, 100), "strength"),
+            (AmgSettings::new(0.0, -0.1, 2, 100), "filter"),
+            (AmgSettings::new(0.0, 0.1, 2, 5), "coarse_unknowns"),
+        ] {
+            assert_eq!(error.unwrap_err().parameter, parameter);
+        }
+    }
 }

@@ -2,7 +2,8 @@
 //! inverses of a level's diagonal node blocks (3x3 on the particles, 6x6 on
 //! the aggregates of the coarse levels).
 
-use super::bsr::{Block, zero};
+use super::bsr::{Block, for_each_block, zero};
+use crate::vector::PARALLEL_MIN_PARTICLES;
 
 /// The inverses of the diagonal `N × N` blocks `A_II` of a level, one per
 /// node.
@@ -36,16 +37,12 @@ impl<const N: usize> BlockInverse<N> {
 
     /// `z = D⁻¹ r`.
     pub(crate) fn apply(&self, r: &[f64], z: &mut [f64]) {
-        for ((inv, ri), zi) in self
-            .values
-            .iter()
-            .zip(r.chunks_exact(N))
-            .zip(z.chunks_exact_mut(N))
-        {
-            for (za, row) in zi.iter_mut().zip(inv) {
+        for_each_block(z, N, PARALLEL_MIN_PARTICLES, |node, zi| {
+            let ri = &r[N * node..N * (node + 1)];
+            for (za, row) in zi.iter_mut().zip(&self.values[node]) {
                 *za = row.iter().zip(ri).map(|(m, x)| m * x).sum();
             }
-        }
+        });
     }
 }
 
