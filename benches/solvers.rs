@@ -301,13 +301,20 @@ fn bench_step(
         report.linear_solves,
         report.linear_iterations,
     );
-    group.bench_function(BenchmarkId::new(name, case), |b| {
+    let id = BenchmarkId::new(name, &case);
+    group.bench_function(id, |b| {
         b.iter_batched_ref(
             || start.clone(),
             |state| black_box(integrator.step(system, state, h).unwrap()),
             BatchSize::LargeInput,
         );
     });
+    // `auto` may have changed its solver after comparing two on whole
+    // steps.
+    if name == LinearSolver::Auto.name() {
+        let settled = integrator.step(system, &mut start.clone(), h).unwrap();
+        eprintln!("{name} {case} after the samples: {}", settled.linear_solver);
+    }
 }
 
 /// The solvers whose converged steps the `step` and `scene-step` groups

@@ -72,6 +72,16 @@ pub enum LinearSolver {
     /// it: a solve that stops at its iteration cap is solved again by the
     /// factorization, which then serves the rest of the run, so that `auto`
     /// never leaves a capped solve where a factor fits.
+    ///
+    /// One solve does not tell everything: a step's iterative solves are
+    /// inexact ([`Implicit::with_inexact_newton`](crate::Implicit::with_inexact_newton))
+    /// and their right-hand sides are not the trial's, and a solver changes
+    /// Newton's path. So when the factorization and the fastest iterative
+    /// candidate solved the trial within [`LinearSolver::AUTO_PROBE_RATIO`]
+    /// of each other, both are kept and measured on whole steps: the step
+    /// after the trial's with the trial's choice, the next with the other,
+    /// each timed per second simulated, and the faster serves the rest of
+    /// the run (the other's factor or hierarchy is dropped).
     /// The choice is reported in [`StepReport::linear_solver`]. As it rests
     /// on timings it can differ between machines, and between runs where
     /// two candidates cost about the same: a run that must be reproducible
@@ -84,11 +94,12 @@ pub enum LinearSolver {
     /// block-Jacobi PCG, 226 ms with the factor and 1.04 s with multigrid;
     /// a rule by size alone cannot tell these apart, and `auto` keeps the
     /// fastest on both. Where two candidates' solves cost about the same
-    /// the trial can keep the one that is slower per step: on the issue's
-    /// 200×200 cloth swinging from its pins it keeps the factor (7.1 s per
-    /// step) where multigrid takes 6.4 s, as multigrid's solves in a step
-    /// are inexact ([`Implicit::with_inexact_newton`](crate::Implicit::with_inexact_newton))
-    /// and cost less than the trial's exact one.
+    /// the trial alone can keep the one that is slower per step: on the
+    /// issue's 200×200 cloth swinging from its pins multigrid's trial solve
+    /// took 1.3–1.8 times the factorization's, while its inexact solves
+    /// made a converged step 1.6 times faster than the factorization's
+    /// (4.9 s against 7.9 s); the comparison on whole steps keeps
+    /// multigrid there, and `auto` steps in 5.1 s.
     /// [`LinearSolver::LaggedCholesky`] is not a candidate: its worth shows
     /// only over a run of changing matrices.
     Auto,
@@ -126,6 +137,16 @@ impl LinearSolver {
     /// faster the same sheet chose it again, under load — so such a solve
     /// now falls back to the factorization (see [`LinearSolver::Auto`]).
     pub const AUTO_ITERATIVE_MARGIN: f64 = 0.8;
+
+    /// How far apart, as a ratio of times, the trial's factorization and its
+    /// fastest iterative candidate may be for [`LinearSolver::Auto`] to
+    /// compare them on whole steps: 3. Measuring the slower one costs one
+    /// step at its speed, so candidates far apart are not measured: on the
+    /// tetrahedral lattice of `benches/solvers.rs` the factorization takes
+    /// 8.6 times block-Jacobi's time, on the rope multigrid 6.7 times the
+    /// factorization's. On the 200×200 cloth swinging from its pins the
+    /// trial's ratio was 1.3–1.8 where multigrid's steps were faster.
+    pub const AUTO_PROBE_RATIO: f64 = 3.0;
 
     /// The solver's name as the scene files and reports spell it: `"pcg"`,
     /// `"cholesky"`, `"amg"`, `"lagged-cholesky"` or `"auto"`.
@@ -245,6 +266,32 @@ pub(crate) struct Topology {
     /// factorization: when [`LinearSolver::Auto`] chose the iterative
     /// solver over an affordable factor.
     fallback: bool,
+    /// [`LinearSolver::Auto`]'s comparison of two candidates on whole
+    /// steps, while it lasts.
+    probe: Option<Probe>,
+}
+
+/// [`LinearSolver::Auto`]'s comparison of the trial's choice and its
+/// runner-up (the factorization or the fastest iterative candidate) on
+/// whole steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Probe {
+    /// The candidate not in use.
+    other: Choice,
+    /// Steps ended since the trial (the trial's own is not measured).
+    steps: usize,
+    /// The wall time per second simulated of the first measured step.
+    first: f64,
+}
+
+impl Probe {
+    fn new(other: Choice) -> Self {
+        Self {
+            other,
+            steps: 0,
+            first: 0.0,
+        }
+    }
 }
 
 impl Topology {
@@ -262,6 +309,39 @@ impl Topology {
     /// `Fixed` from the start).
     pub(crate) fn matrix_and_filters_mut(&mut self) -> (&BlockMatrix, &mut [Filter]) {
         (&self.matrix, &mut self.filters)
+    }
+
+    /// Ends a step of `dt` that took `elapsed` of wall time, for
+    /// [`LinearSolver::Auto`]'s comparison on whole steps: the step after
+    /// the trial's is measured with the trial's choice, the next with the
+    /// other candidate, and the faster per second simulated is kept (see
+    /// [`LinearSolver::Auto`]).
+    pub(crate) fn step_ended(&mut self, elapsed: Duration, dt: f64) {
+        let Some(probe) = &mut self.probe else {
+            return;
+        };
+        let cost = elapsed.as_secs_f64() / dt;
+        probe.steps += 1;
+        match probe.steps {
+            1 => return,
+            2 => {
+                probe.first = cost;
+                std::mem::swap(&mut self.solver, &mut probe.other);
+            }
+            _ => {
+                if cost > probe.first {
+                    std::mem::swap(&mut self.solver, &mut probe.other);
+                }
+                self.probe = None;
+                if self.solver == Choice::Cholesky {
+                    self.amg = AmgState::default();
+                } else {
+                    self.cholesky = None;
+                }
+            }
+        }
+        // The factor is affordable whenever the two are compared.
+        self.fallback = self.solver != Choice::Cholesky;
     }
 
     /// Adds `c I` to the diagonal block of particle `i` of the matrix last
@@ -316,6 +396,7 @@ pub(crate) fn topology<'a>(
             refactor: true,
             amg: AmgState::default(),
             fallback: false,
+            probe: None,
         });
     }
     Ok(cached.as_mut().expect("built above"))
@@ -372,7 +453,8 @@ impl Solve<'_> {
             ..
         } = self;
         if topology.solver == Choice::Trial {
-            (topology.solver, topology.fallback) = trial(topology, positions, workspace, time)?;
+            (topology.solver, topology.fallback, topology.probe) =
+                trial(topology, positions, workspace, time)?;
         }
         let Topology {
             matrix,
@@ -383,6 +465,7 @@ impl Solve<'_> {
             refactor,
             amg,
             fallback,
+            probe,
             ..
         } = topology;
         report.force_evaluations += 1;
@@ -521,6 +604,7 @@ impl Solve<'_> {
             report.linear_solver = Choice::Cholesky.name();
             *solver = Choice::Cholesky;
             *fallback = false;
+            *probe = None;
             *amg = AmgState::default();
             *cholesky = Some(SparseCholesky::new(matrix)?);
         }
@@ -541,9 +625,12 @@ impl Solve<'_> {
 /// components in `[−1, 1]` with each candidate ([`second_run`] timing
 /// it), keeps what the chosen one built (the factor or the hierarchy) and
 /// returns it — the fastest, but an iterative candidate only within
-/// [`LinearSolver::AUTO_ITERATIVE_MARGIN`] of the factorization's time —
-/// and whether it falls back to the factorization (an iterative choice
-/// where the factor is affordable). A
+/// [`LinearSolver::AUTO_ITERATIVE_MARGIN`] of the factorization's time —,
+/// whether it falls back to the factorization (an iterative choice
+/// where the factor is affordable) and, when the factorization and the
+/// fastest iterative candidate are within
+/// [`LinearSolver::AUTO_PROBE_RATIO`], the comparison of the two on whole
+/// steps, for which it keeps what both built. A
 /// right-hand side of every frequency tries each preconditioner as
 /// the later Newton systems will, where the step's own one may be smooth
 /// (a cloth at rest under gravity) and flatter a preconditioner that only
@@ -558,7 +645,7 @@ fn trial(
     positions: &[Vec3],
     workspace: &mut PcgWorkspace,
     time: f64,
-) -> Result<(Choice, bool), StepError> {
+) -> Result<(Choice, bool, Option<Probe>), StepError> {
     let Topology {
         matrix,
         jacobi,
@@ -656,13 +743,34 @@ fn trial(
         (Some((choice, _)), None) => choice,
         (None, None) => Choice::Amg(settings),
     };
-    if best != Choice::Cholesky {
+    // The factorization and the fastest iterative candidate close enough
+    // to compare on whole steps.
+    let probe = match (fastest, direct) {
+        (Some((choice, elapsed)), Some(direct)) => {
+            let (iterative, direct) = (elapsed.as_secs_f64(), direct.as_secs_f64());
+            (iterative.max(direct) <= LinearSolver::AUTO_PROBE_RATIO * iterative.min(direct)).then(
+                || {
+                    Probe::new(if best == Choice::Cholesky {
+                        choice
+                    } else {
+                        Choice::Cholesky
+                    })
+                },
+            )
+        }
+        _ => None,
+    };
+    // Multigrid as the other candidate is built at its first solve, as in
+    // a run that starts with it: the trial's hierarchy, kept idle through
+    // the factorization's step, set off other refreshes and rebuilds, and
+    // steps of the 200² swinging cloth took 4.3–8.2 s against 4.7 s.
+    if best != Choice::Cholesky && probe.is_none() {
         *cholesky = None;
     }
     if !matches!(best, Choice::Amg(_)) {
         *amg = AmgState::default();
     }
-    Ok((best, affordable && best != Choice::Cholesky))
+    Ok((best, affordable && best != Choice::Cholesky, probe))
 }
 
 /// Runs `solve` twice and times the second run, which finds in place the
@@ -681,6 +789,36 @@ mod tests {
     use hooke_core::reference::Sheet;
 
     use super::*;
+
+    /// [`LinearSolver::Auto`]'s comparison on whole steps: the trial's own
+    /// step is not measured, the next one runs the trial's choice (here the
+    /// factorization), the one after the other candidate (block-Jacobi
+    /// PCG), and the faster per second simulated serves the rest of the
+    /// run, the other's factor dropped. The second case's step is twice as
+    /// long: slower in wall time, faster per second simulated.
+    #[test]
+    fn auto_keeps_the_candidate_faster_per_second_simulated_on_whole_steps() {
+        let system = Sheet::new(12).system().unwrap();
+        let jacobi = Choice::Pcg(PcgSettings::default());
+        let ms = |t: f64| Duration::from_secs_f64(1e-3 * t);
+        for ((elapsed, dt), kept) in [((20.0, 0.01), Choice::Cholesky), ((15.0, 0.02), jacobi)] {
+            let mut cached = None;
+            let topology = topology(&mut cached, LinearSolver::Cholesky, &system).unwrap();
+            topology.probe = Some(Probe::new(jacobi));
+            topology.step_ended(ms(50.0), 0.01);
+            assert_eq!(topology.solver, Choice::Cholesky);
+            topology.step_ended(ms(10.0), 0.01);
+            assert_eq!(topology.solver, jacobi);
+            assert!(topology.fallback && topology.cholesky.is_some());
+            topology.step_ended(ms(elapsed), dt);
+            assert_eq!(topology.solver, kept);
+            assert!(topology.probe.is_none());
+            assert_eq!(topology.cholesky.is_some(), kept == Choice::Cholesky);
+            assert_eq!(topology.fallback, kept != Choice::Cholesky);
+            topology.step_ended(ms(1000.0), 0.01);
+            assert_eq!(topology.solver, kept);
+        }
+    }
 
     /// The trial leaves an iterative choice with the fallback on when the
     /// factor is affordable; here block-Jacobi PCG capped at one iteration

@@ -1,6 +1,8 @@
 //! [`Implicit`]'s step: the caller's step delivered whole, in substeps that
 //! shrink on rejection and grow back, within the conditioning limit.
 
+use std::time::Instant;
+
 use hooke_core::{Integrator, State, StepError, StepReport, System, Vec3, check_step};
 
 use crate::attempt::Outcome;
@@ -16,6 +18,7 @@ impl Integrator for Implicit {
         dt: f64,
     ) -> Result<StepReport, StepError> {
         check_step(system, state, dt)?;
+        let clock = Instant::now();
         let n = state.len();
         let w = &mut self.work;
         for buffer in [
@@ -100,6 +103,9 @@ impl Integrator for Implicit {
                     return Err(error);
                 }
             }
+        }
+        if let Some(topology) = &mut self.topology {
+            topology.step_ended(clock.elapsed(), dt);
         }
         Ok(report)
     }
