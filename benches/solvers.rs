@@ -9,6 +9,16 @@
 //! - `solve`: one solve as a Newton iteration pays it (Cholesky: refill,
 //!   numeric factorization and solve; multigrid: the refresh of every
 //!   level's values and PCG; block-Jacobi: PCG);
+//! - `linearised-step`: Baraff & Witkin's step as the issue measures it —
+//!   one linear solve from the wavy state to 10⁻⁶, assembly included — of
+//!   the integrator (`Implicit::linearized`), the factor or hierarchy kept
+//!   across samples, with each solver, multigrid with both renewals and
+//!   `auto`, beside Liu et al.'s fast mass-spring step with 10 iterations
+//!   from the same state;
+//! - `run`: [`RUN_STEPS`] linearised steps of the cloth falling from the
+//!   wavy state, a fresh integrator per sample, with each solver, multigrid
+//!   with both renewals ([`AmgRenewal`]), `auto` and Liu et al.'s step
+//!   (sides from `HOOKE_RUN_SIDES`, default `50,100`);
 //! - `step` (a converged step of this cloth takes 8 linear solves at 50²
 //!   and about 26 at 100²): one converged backward-Euler step of the
 //!   integrator, the hierarchy or factor kept from the steps before, with
@@ -23,8 +33,9 @@
 //!   each solver and `auto`, whose best choice is not the cloth's.
 //!
 //! The sides come from `HOOKE_SOLVER_SIDES` (comma-separated, default
-//! `50,100,200,400,1000`) and, for `step`, `HOOKE_STEP_SIDES` (default
-//! `50,100`; empty for none); Cholesky runs up to 400², block-Jacobi PCG up to
+//! `50,100,200,400,1000`), for `step`, `HOOKE_STEP_SIDES`, and for
+//! `equal-accuracy`, `HOOKE_EQUAL_SIDES` (both default `50,100`; empty for
+//! none: their setup runs even when a filter leaves the group out); Cholesky runs up to 400², block-Jacobi PCG up to
 //! 200² (beyond, its thousands of iterations take minutes per sample). The
 //! iteration counts and the hierarchies' sizes are printed as the benchmark
 //! sets up. `benches/README.md` has the measured table.
@@ -37,8 +48,8 @@ use criterion::{
     BatchSize, BenchmarkGroup, BenchmarkId, Criterion, criterion_group, criterion_main,
 };
 use hooke::implicit::{
-    Amg, AmgSettings, BlockJacobi, BlockMatrix, FastMassSpring, Filter, Implicit, LinearSolver,
-    PcgSettings, SparseCholesky, cg,
+    Amg, AmgRenewal, AmgSettings, BlockJacobi, BlockMatrix, FastMassSpring, Filter, Implicit,
+    LinearSolver, PcgSettings, SparseCholesky, cg,
 };
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Mass, Springs};
@@ -388,6 +399,130 @@ fn steps(c: &mut Criterion) {
     group.finish();
 }
 
+/// Baraff & Witkin's linearised step from the wavy state, the issue's
+/// measure, with each solver (Cholesky up to 400², block-Jacobi PCG up to
+/// 200²), multigrid also with its earlier renewal
+/// ([`AmgRenewal::SmootherOnly`]) and `auto`, the integrator kept across
+/// samples, beside Liu et al.'s step with 10 iterations (up to 400²).
+fn linearised_steps(c: &mut Criterion) {
+    let mut group = c.benchmark_group("linearised-step");
+    group.sample_size(10);
+    for n in sides("HOOKE_SOLVER_SIDES", &[50, 100, 200, 400, 1000]) {
+        let system = cloth(n, DAMPING);
+        let start = wavy(&system);
+        let mut integrators: Vec<(&str, Box<dyn Integrator>)> = Vec::new();
+        if n <= 400 {
+            integrators.push(("fast-mass-spring-10", Box::new(FastMassSpring::default())));
+        }
+        for solver in stepped_solvers() {
+            let runs = match solver {
+                LinearSolver::Cholesky => n <= 400,
+                LinearSolver::Pcg(_) => n <= 200,
+                _ => true,
+            };
+            if runs {
+                integrators.push((
+                    solver.name(),
+                    Box::new(Implicit::backward_euler().with_solver(solver).linearized()),
+                ));
+            }
+        }
+        integrators.push((
+            "amg-smoother-only",
+            Box::new(
+                Implicit::backward_euler()
+                    .with_solver(LinearSolver::Amg(PcgSettings::default()))
+                    .with_amg_renewal(AmgRenewal::SmootherOnly)
+                    .linearized(),
+            ),
+        ));
+        for (name, mut integrator) in integrators {
+            bench_step(
+                &mut group,
+                (name, n),
+                (&system, H),
+                (&start, None),
+                integrator.as_mut(),
+            );
+        }
+    }
+    group.finish();
+}
+
+/// Steps in a sample of the `run` group.
+const RUN_STEPS: usize = 20;
+
+/// Makes a fresh integrator for each sample of a run.
+type Fresh = Box<dyn Fn() -> Box<dyn Integrator>>;
+
+/// A run of [`RUN_STEPS`] linearised steps of the cloth falling from its
+/// wavy state, each sample with a fresh integrator (its factor, hierarchy
+/// or trial included, as in any run), with each solver (Cholesky up to
+/// 400²), multigrid also with its earlier renewal
+/// ([`AmgRenewal::SmootherOnly`]), `auto`, and Liu et al.'s step with 10
+/// iterations (up to 400²). Unlike `linearised-step`, every step starts
+/// where the last one ended, so a factor or hierarchy kept from earlier
+/// steps meets the matrices of a moving cloth.
+fn runs(c: &mut Criterion) {
+    let mut group = c.benchmark_group("run");
+    group.sample_size(10);
+    for n in sides("HOOKE_RUN_SIDES", &[50, 100]) {
+        let system = cloth(n, DAMPING);
+        let start = wavy(&system);
+        let linearised = |solver| Implicit::backward_euler().with_solver(solver).linearized();
+        let amg = LinearSolver::Amg(PcgSettings::default());
+        let mut integrators: Vec<(&str, Fresh)> = vec![
+            (
+                "auto",
+                Box::new(move || Box::new(linearised(LinearSolver::Auto))),
+            ),
+            ("amg", Box::new(move || Box::new(linearised(amg)))),
+            (
+                "amg-smoother-only",
+                Box::new(move || {
+                    Box::new(linearised(amg).with_amg_renewal(AmgRenewal::SmootherOnly))
+                }),
+            ),
+        ];
+        if n <= 400 {
+            integrators.push((
+                "cholesky",
+                Box::new(move || Box::new(linearised(LinearSolver::Cholesky))),
+            ));
+            integrators.push((
+                "fast-mass-spring-10",
+                Box::new(|| Box::new(FastMassSpring::default())),
+            ));
+        }
+        for (name, integrator) in integrators {
+            let mut state = start.clone();
+            let mut fresh = integrator();
+            let (mut iterations, mut solvers) = (0, Vec::new());
+            for _ in 0..RUN_STEPS {
+                let report = fresh.step(&system, &mut state, H).unwrap();
+                iterations += report.linear_iterations;
+                solvers.push(report.linear_solver);
+            }
+            solvers.dedup();
+            eprintln!(
+                "{name} {n}: {RUN_STEPS} steps, {iterations} linear iterations, solvers {solvers:?}"
+            );
+            group.bench_function(BenchmarkId::new(name, n), |b| {
+                b.iter_batched(
+                    || (start.clone(), integrator()),
+                    |(mut state, mut integrator)| {
+                        for _ in 0..RUN_STEPS {
+                            black_box(integrator.step(&system, &mut state, H).unwrap());
+                        }
+                    },
+                    BatchSize::LargeInput,
+                );
+            });
+        }
+    }
+    group.finish();
+}
+
 /// Equal accuracy: on the cloth without spring damping (which Liu et
 /// al.'s method leaves out, so that with it the method converges to
 /// another step), one converged backward-Euler step at the defaults, and
@@ -396,7 +531,7 @@ fn steps(c: &mut Criterion) {
 fn equal_accuracy(c: &mut Criterion) {
     let mut group = c.benchmark_group("equal-accuracy");
     group.sample_size(10);
-    for n in sides("HOOKE_STEP_SIDES", &[50, 100]) {
+    for n in sides("HOOKE_EQUAL_SIDES", &[50, 100]) {
         let system = cloth(n, 0.0);
         let start = swinging(&system);
         let reference = reference_step(&system, &start, n);
@@ -464,5 +599,13 @@ fn other_scene_steps(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, linear, steps, equal_accuracy, other_scene_steps);
+criterion_group!(
+    benches,
+    linear,
+    linearised_steps,
+    runs,
+    steps,
+    equal_accuracy,
+    other_scene_steps
+);
 criterion_main!(benches);

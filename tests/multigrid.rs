@@ -1,11 +1,13 @@
 //! Smoothed-aggregation multigrid as the PCG preconditioner: it solves the
 //! same constrained systems as the sparse Cholesky factorization, on cloth,
 //! tet lattices and ropes with pins and contacts; its iteration count stays
-//! bounded as the cloth is refined; and a hierarchy built for one
-//! constraint set solves the system of another.
+//! bounded as the cloth is refined; a hierarchy built for one constraint
+//! set solves the system of another; and refreshing every level at every
+//! solve pays on a moving cloth.
 
 use hooke::implicit::{
-    Amg, AmgSettings, BlockMatrix, Filter, Implicit, LinearSolver, PcgSettings, SparseCholesky, cg,
+    Amg, AmgRenewal, AmgSettings, BlockMatrix, Filter, Implicit, LinearSolver, PcgSettings,
+    SparseCholesky, cg,
 };
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Lattice, Mass, Springs, TetSplit};
@@ -286,4 +288,39 @@ fn auto_times_the_candidates_and_reports_its_choice() {
             assert_eq!(report.unconverged_solves, 0);
         }
     }
+}
+
+/// On the cloth falling from a wavy state, multigrid that refreshes every
+/// level's values at every solve (the default) takes fewer PCG iterations
+/// over a run of linearised steps than multigrid that refreshes only the
+/// finest smoother until a solve slows down: the coarse operators of the
+/// last step's matrix precondition this step's poorly (on the 200² cloth a
+/// solve took 2–8 times the iterations). Every solve converges with both.
+#[test]
+fn refreshing_every_level_at_every_solve_takes_fewer_iterations_on_a_falling_cloth() {
+    let system = cloth(40);
+    let mut start = system.initial_state();
+    for x in start.positions_mut() {
+        x.y = 0.02 * (7.0 * x.x).sin() * (5.0 * x.z).cos();
+    }
+    let iterations = |renewal| {
+        let mut integrator = Implicit::backward_euler()
+            .with_solver(LinearSolver::Amg(PcgSettings::default()))
+            .with_amg_renewal(renewal)
+            .linearized();
+        let mut state = start.clone();
+        (0..20)
+            .map(|_| {
+                let report = integrator.step(&system, &mut state, H).unwrap();
+                assert_eq!(report.unconverged_solves, 0);
+                report.linear_iterations
+            })
+            .sum::<usize>()
+    };
+    let every = iterations(AmgRenewal::EverySolve);
+    let lazy = iterations(AmgRenewal::SmootherOnly);
+    assert!(
+        5 * every < 4 * lazy,
+        "{every} iterations refreshing every level, {lazy} the smoother only"
+    );
 }

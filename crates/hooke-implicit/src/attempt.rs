@@ -120,7 +120,7 @@ impl Implicit {
         self.saved_contacts.clone_from(&self.contacts);
 
         let (compressed, solver, strict) = (self.compressed, self.solver, self.strict);
-        let topology = topology(&mut self.topology, solver, system)?;
+        let topology = topology(&mut self.topology, solver, self.amg_renewal, system)?;
         let solve = Solve {
             system,
             strict,

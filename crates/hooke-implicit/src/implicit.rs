@@ -6,7 +6,7 @@ use crate::assembly::Assembler;
 use crate::cg::PcgWorkspace;
 use crate::contact::Contacts;
 use crate::error_control::ErrorControl;
-use crate::solver::{LinearSolver, Topology};
+use crate::solver::{AmgRenewal, LinearSolver, Topology};
 
 /// The time discretisation. Both are implicit, A-stable and L-stable: stiff
 /// modes are damped, never amplified, at any step size.
@@ -155,6 +155,7 @@ pub struct Implicit {
     pub(crate) newton_iterations: usize,
     pub(crate) newton_tolerance: f64,
     pub(crate) inexact_newton: bool,
+    pub(crate) amg_renewal: AmgRenewal,
     pub(crate) max_halvings: u32,
     pub(crate) strict: bool,
     pub(crate) compressed: CompressedSprings,
@@ -253,6 +254,7 @@ impl Implicit {
             newton_iterations: Self::NEWTON_ITERATIONS,
             newton_tolerance: Self::NEWTON_TOLERANCE,
             inexact_newton: true,
+            amg_renewal: AmgRenewal::default(),
             max_halvings: Self::MAX_HALVINGS,
             strict: false,
             compressed: CompressedSprings::Clamped,
@@ -296,6 +298,20 @@ impl Implicit {
     #[must_use]
     pub fn with_inexact_newton(mut self, inexact: bool) -> Self {
         self.inexact_newton = inexact;
+        self
+    }
+
+    /// How much of its hierarchy [`LinearSolver::Amg`] renews from one
+    /// solve to the next (default [`AmgRenewal::EverySolve`]).
+    ///
+    /// ```
+    /// use hooke_implicit::{AmgRenewal, Implicit};
+    /// let lazy = Implicit::backward_euler().with_amg_renewal(AmgRenewal::SmootherOnly);
+    /// ```
+    #[must_use]
+    pub fn with_amg_renewal(mut self, renewal: AmgRenewal) -> Self {
+        self.amg_renewal = renewal;
+        self.topology = None;
         self
     }
 

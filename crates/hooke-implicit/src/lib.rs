@@ -145,5 +145,5 @@ pub use filter::Filter;
 pub use implicit::{Implicit, Scheme};
 pub use matrix::BlockMatrix;
 pub use pattern::Pattern;
-pub use solver::LinearSolver;
+pub use solver::{AmgRenewal, LinearSolver};
 pub use vector::PARALLEL_MIN_PARTICLES;

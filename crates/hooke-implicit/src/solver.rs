@@ -27,12 +27,10 @@ pub enum LinearSolver {
     /// The filtered PCG preconditioned by one V-cycle of smoothed-aggregation
     /// multigrid ([`Amg`], default [`AmgSettings`]) on the filtered matrix
     /// `S A S + I − S`. The hierarchy is built at the first solve and kept
-    /// across Newton iterations and steps: every solve refreshes the finest
-    /// level's smoother, a solve that took more than 1.5 times the
-    /// iterations of the first one after the build has the next refresh
-    /// every level's values, and one that took more than twice as many
-    /// right after such a refresh has the next rebuild the hierarchy (see
-    /// the [`amg`](crate::amg) module).
+    /// across Newton iterations and steps; how much of it each solve renews
+    /// is the integrator's [`AmgRenewal`] (by default every level's values,
+    /// and the whole hierarchy once a solve takes twice the iterations of
+    /// the first one after the build).
     Amg(PcgSettings),
     /// The filtered PCG preconditioned by a lagged sparse Cholesky factor:
     /// the factor `L Lᵀ` of an earlier matrix of the same topology (an
@@ -207,21 +205,44 @@ impl Default for LinearSolver {
     }
 }
 
+/// How [`LinearSolver::Amg`] renews its hierarchy from one solve to the
+/// next ([`Implicit::with_amg_renewal`](crate::Implicit::with_amg_renewal)).
+/// Its baseline is the iteration count of the first solve after the last
+/// build.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub enum AmgRenewal {
+    /// Every solve refreshes every level's values ([`Amg::refresh`]: the
+    /// block inverses, the smoothers' intervals and the Galerkin coarse
+    /// operators), and a solve that took more than twice the baseline has
+    /// the next rebuild the hierarchy ([`Amg::build`]). The default: on a
+    /// 200² cloth the refresh costs about four PCG iterations (21 ms), and
+    /// it keeps the coarse operators those of the matrix being solved.
+    #[default]
+    EverySolve,
+    /// Every solve refreshes only the finest level's smoother
+    /// ([`Amg::refresh_smoother`]); a solve that took more than 1.5 times
+    /// the baseline has the next refresh every level's values, and one that
+    /// took more than twice it right after such a refresh has the next
+    /// rebuild. Cheaper per solve, but coarse operators one step old cost
+    /// a falling 200² cloth 2–8 times the iterations of fresh ones.
+    SmootherOnly,
+}
+
 /// The multigrid hierarchy of [`LinearSolver::Amg`] and how much of it the
 /// next solve renews.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 struct AmgState {
     amg: Option<Amg>,
+    policy: AmgRenewal,
     /// Iterations of the first solve after the last build (0: none yet).
     baseline: usize,
     next: Renewal,
 }
 
 /// How much of the hierarchy a solve renews.
-#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Renewal {
     /// The finest level's smoother ([`Amg::refresh_smoother`]).
-    #[default]
     Smoother,
     /// Every level's values ([`Amg::refresh`]).
     Values,
@@ -230,20 +251,42 @@ enum Renewal {
 }
 
 impl AmgState {
-    /// The renewal after a solve of `iterations` that followed `renewal`:
-    /// values after 1.5 times the baseline, the hierarchy after twice it
-    /// right after the values were renewed.
-    fn after(&mut self, renewal: Renewal, iterations: usize) {
-        if renewal == Renewal::Hierarchy || self.baseline == 0 {
-            self.baseline = iterations.max(1);
-            self.next = Renewal::Smoother;
-        } else if renewal == Renewal::Values && iterations > 2 * self.baseline {
-            self.next = Renewal::Hierarchy;
-        } else if 2 * iterations > 3 * self.baseline {
-            self.next = Renewal::Values;
-        } else {
-            self.next = Renewal::Smoother;
+    fn new(policy: AmgRenewal) -> Self {
+        Self {
+            amg: None,
+            policy,
+            baseline: 0,
+            next: Self::routine(policy),
         }
+    }
+
+    /// Drops the hierarchy and its history.
+    fn clear(&mut self) {
+        *self = Self::new(self.policy);
+    }
+
+    /// The renewal of a solve that renews no more than `policy` asks.
+    fn routine(policy: AmgRenewal) -> Renewal {
+        match policy {
+            AmgRenewal::EverySolve => Renewal::Values,
+            AmgRenewal::SmootherOnly => Renewal::Smoother,
+        }
+    }
+
+    /// The renewal after a solve of `iterations` that followed `renewal`
+    /// (see [`AmgRenewal`]).
+    fn after(&mut self, renewal: Renewal, iterations: usize) {
+        let routine = Self::routine(self.policy);
+        self.next = if renewal == Renewal::Hierarchy || self.baseline == 0 {
+            self.baseline = iterations.max(1);
+            routine
+        } else if renewal == Renewal::Values && iterations > 2 * self.baseline {
+            Renewal::Hierarchy
+        } else if 2 * iterations > 3 * self.baseline {
+            Renewal::Values
+        } else {
+            routine
+        };
     }
 }
 
@@ -334,7 +377,7 @@ impl Topology {
                 }
                 self.probe = None;
                 if self.solver == Choice::Cholesky {
-                    self.amg = AmgState::default();
+                    self.amg.clear();
                 } else {
                     self.cholesky = None;
                 }
@@ -364,6 +407,7 @@ impl Topology {
 pub(crate) fn topology<'a>(
     cached: &'a mut Option<Topology>,
     solver: LinearSolver,
+    renewal: AmgRenewal,
     system: &System,
 ) -> Result<&'a mut Topology, StepError> {
     if cached.as_ref().is_some_and(|t| t.system != system.id()) {
@@ -394,7 +438,7 @@ pub(crate) fn topology<'a>(
             solver,
             cholesky,
             refactor: true,
-            amg: AmgState::default(),
+            amg: AmgState::new(renewal),
             fallback: false,
             probe: None,
         });
@@ -605,7 +649,7 @@ impl Solve<'_> {
             *solver = Choice::Cholesky;
             *fallback = false;
             *probe = None;
-            *amg = AmgState::default();
+            amg.clear();
             *cholesky = Some(SparseCholesky::new(matrix)?);
         }
         if *solver == Choice::Cholesky {
@@ -701,7 +745,7 @@ fn trial(
                 // side takes more iterations than they do.
                 *amg = AmgState {
                     amg: Some(hierarchy),
-                    ..AmgState::default()
+                    ..AmgState::new(amg.policy)
                 };
             }
         }
@@ -768,7 +812,7 @@ fn trial(
         *cholesky = None;
     }
     if !matches!(best, Choice::Amg(_)) {
-        *amg = AmgState::default();
+        amg.clear();
     }
     Ok((best, affordable && best != Choice::Cholesky, probe))
 }
@@ -790,6 +834,51 @@ mod tests {
 
     use super::*;
 
+    /// The renewals each policy asks after a sequence of solves (their
+    /// iteration counts), from a hierarchy just built whose first solve
+    /// took 20: [`AmgRenewal::EverySolve`] refreshes every level until a
+    /// solve takes more than 40, then rebuilds and takes its next solve as
+    /// the baseline; [`AmgRenewal::SmootherOnly`] refreshes the smoother
+    /// until a solve takes more than 30, then every level, and rebuilds
+    /// only when a solve right after that takes more than 40.
+    #[test]
+    fn multigrid_renews_what_its_policy_asks_after_each_solve() {
+        use Renewal::{Hierarchy, Smoother, Values};
+        let cases = [
+            (
+                AmgRenewal::EverySolve,
+                vec![
+                    (20, Values),
+                    (35, Values),
+                    (41, Hierarchy),
+                    (30, Values),
+                    (61, Hierarchy),
+                ],
+            ),
+            (
+                AmgRenewal::SmootherOnly,
+                vec![
+                    (20, Smoother),
+                    (30, Smoother),
+                    (31, Values),
+                    (35, Values),
+                    (41, Hierarchy),
+                    (30, Smoother),
+                    (46, Values),
+                ],
+            ),
+        ];
+        for (policy, solves) in cases {
+            let mut state = AmgState::new(policy);
+            let mut renewal = Hierarchy;
+            for (iterations, expected) in solves {
+                state.after(renewal, iterations);
+                assert_eq!(state.next, expected, "{policy:?} after {iterations}");
+                renewal = state.next;
+            }
+        }
+    }
+
     /// [`LinearSolver::Auto`]'s comparison on whole steps: the trial's own
     /// step is not measured, the next one runs the trial's choice (here the
     /// factorization), the one after the other candidate (block-Jacobi
@@ -803,7 +892,13 @@ mod tests {
         let ms = |t: f64| Duration::from_secs_f64(1e-3 * t);
         for ((elapsed, dt), kept) in [((20.0, 0.01), Choice::Cholesky), ((15.0, 0.02), jacobi)] {
             let mut cached = None;
-            let topology = topology(&mut cached, LinearSolver::Cholesky, &system).unwrap();
+            let topology = topology(
+                &mut cached,
+                LinearSolver::Cholesky,
+                AmgRenewal::default(),
+                &system,
+            )
+            .unwrap();
             topology.probe = Some(Probe::new(jacobi));
             topology.step_ended(ms(50.0), 0.01);
             assert_eq!(topology.solver, Choice::Cholesky);
@@ -836,7 +931,13 @@ mod tests {
         let n = system.particle_count();
         let capped = PcgSettings::new(1e-10, 1).unwrap();
         let mut cached = None;
-        let topology = topology(&mut cached, LinearSolver::Pcg(capped), &system).unwrap();
+        let topology = topology(
+            &mut cached,
+            LinearSolver::Pcg(capped),
+            AmgRenewal::default(),
+            &system,
+        )
+        .unwrap();
         topology.fallback = true;
         let h = 0.01;
         let u: Vec<Vec3> = state.velocities().iter().map(|v| h * v).collect();

@@ -48,7 +48,7 @@ impl Integrator for Implicit {
         let longest = if self.linearized {
             f64::INFINITY
         } else {
-            topology(&mut self.topology, self.solver, system)?
+            topology(&mut self.topology, self.solver, self.amg_renewal, system)?
                 .rates
                 .longest_step(Self::MAX_CONDITION)
         };

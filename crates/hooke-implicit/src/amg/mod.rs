@@ -58,10 +58,10 @@
 //! the Galerkin operators `A_c = Pᵀ Â P` level by level and the coarse
 //! factor; [`Amg::refresh_smoother`] only the finest level's smoother. The
 //! linear solver ([`LinearSolver::Amg`](crate::LinearSolver::Amg)) refreshes
-//! the smoother at every solve, the whole hierarchy when a solve took more
-//! than 1.5 times the iterations of the first solve after the last build, and
-//! rebuilds it when a solve right after a full refresh took more than twice
-//! as many.
+//! every level at every solve and rebuilds the hierarchy when a solve took
+//! more than twice the iterations of the first solve after the last build;
+//! [`AmgRenewal`](crate::AmgRenewal) has the lazier alternative and the
+//! measurements behind the choice.
 
 mod aggregation;
 mod bsr;
