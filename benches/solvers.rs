@@ -35,8 +35,8 @@
 //! The sides come from `HOOKE_SOLVER_SIDES` (comma-separated, default
 //! `50,100,200,400,1000`), for `step`, `HOOKE_STEP_SIDES`, and for
 //! `equal-accuracy`, `HOOKE_EQUAL_SIDES` (both default `50,100`; empty for
-//! none: their setup runs even when a filter leaves the group out); Cholesky runs up to 400², block-Jacobi PCG up to
-//! 200² (beyond, its thousands of iterations take minutes per sample). The
+//! none: their setup runs even when a filter leaves the group out);
+//! Cholesky runs up to 400², block-Jacobi PCG up to 200² (beyond, its thousands of iterations take minutes per sample). The
 //! iteration counts and the hierarchies' sizes are printed as the benchmark
 //! sets up. `benches/README.md` has the measured table.
 
@@ -399,50 +399,61 @@ fn steps(c: &mut Criterion) {
     group.finish();
 }
 
+/// Makes a fresh integrator.
+type Fresh = Box<dyn Fn() -> Box<dyn Integrator>>;
+
+/// The integrators of the `linearised-step` and `run` groups at side `n`:
+/// Liu et al.'s step with 10 iterations (up to 400²), and the linearised
+/// backward-Euler step with `auto`, Cholesky (up to 400²), multigrid with
+/// both renewals ([`AmgRenewal`]) and block-Jacobi PCG up to side
+/// `pcg_sides`.
+fn linearised_integrators(n: usize, pcg_sides: usize) -> Vec<(&'static str, Fresh)> {
+    let linearised = |solver| Implicit::backward_euler().with_solver(solver).linearized();
+    let amg = LinearSolver::Amg(PcgSettings::default());
+    let pcg = LinearSolver::Pcg(PcgSettings::default());
+    let mut integrators: Vec<(&'static str, Fresh)> = vec![
+        (
+            "auto",
+            Box::new(move || Box::new(linearised(LinearSolver::Auto))),
+        ),
+        ("amg", Box::new(move || Box::new(linearised(amg)))),
+        (
+            "amg-smoother-only",
+            Box::new(move || Box::new(linearised(amg).with_amg_renewal(AmgRenewal::SmootherOnly))),
+        ),
+    ];
+    if n <= 400 {
+        integrators.push((
+            "cholesky",
+            Box::new(move || Box::new(linearised(LinearSolver::Cholesky))),
+        ));
+        integrators.push((
+            "fast-mass-spring-10",
+            Box::new(|| Box::new(FastMassSpring::default())),
+        ));
+    }
+    if n <= pcg_sides {
+        integrators.push(("pcg", Box::new(move || Box::new(linearised(pcg)))));
+    }
+    integrators
+}
+
 /// Baraff & Witkin's linearised step from the wavy state, the issue's
-/// measure, with each solver (Cholesky up to 400², block-Jacobi PCG up to
-/// 200²), multigrid also with its earlier renewal
-/// ([`AmgRenewal::SmootherOnly`]) and `auto`, the integrator kept across
-/// samples, beside Liu et al.'s step with 10 iterations (up to 400²).
+/// measure, with [`linearised_integrators`] (block-Jacobi PCG up to 200²),
+/// the integrator kept across samples.
 fn linearised_steps(c: &mut Criterion) {
     let mut group = c.benchmark_group("linearised-step");
     group.sample_size(10);
     for n in sides("HOOKE_SOLVER_SIDES", &[50, 100, 200, 400, 1000]) {
         let system = cloth(n, DAMPING);
         let start = wavy(&system);
-        let mut integrators: Vec<(&str, Box<dyn Integrator>)> = Vec::new();
-        if n <= 400 {
-            integrators.push(("fast-mass-spring-10", Box::new(FastMassSpring::default())));
-        }
-        for solver in stepped_solvers() {
-            let runs = match solver {
-                LinearSolver::Cholesky => n <= 400,
-                LinearSolver::Pcg(_) => n <= 200,
-                _ => true,
-            };
-            if runs {
-                integrators.push((
-                    solver.name(),
-                    Box::new(Implicit::backward_euler().with_solver(solver).linearized()),
-                ));
-            }
-        }
-        integrators.push((
-            "amg-smoother-only",
-            Box::new(
-                Implicit::backward_euler()
-                    .with_solver(LinearSolver::Amg(PcgSettings::default()))
-                    .with_amg_renewal(AmgRenewal::SmootherOnly)
-                    .linearized(),
-            ),
-        ));
-        for (name, mut integrator) in integrators {
+        for (name, integrator) in linearised_integrators(n, 200) {
             bench_step(
                 &mut group,
                 (name, n),
                 (&system, H),
                 (&start, None),
-                integrator.as_mut(),
+                integrator().as_mut(),
             );
         }
     }
@@ -452,49 +463,20 @@ fn linearised_steps(c: &mut Criterion) {
 /// Steps in a sample of the `run` group.
 const RUN_STEPS: usize = 20;
 
-/// Makes a fresh integrator for each sample of a run.
-type Fresh = Box<dyn Fn() -> Box<dyn Integrator>>;
-
 /// A run of [`RUN_STEPS`] linearised steps of the cloth falling from its
 /// wavy state, each sample with a fresh integrator (its factor, hierarchy
-/// or trial included, as in any run), with each solver (Cholesky up to
-/// 400²), multigrid also with its earlier renewal
-/// ([`AmgRenewal::SmootherOnly`]), `auto`, and Liu et al.'s step with 10
-/// iterations (up to 400²). Unlike `linearised-step`, every step starts
-/// where the last one ended, so a factor or hierarchy kept from earlier
-/// steps meets the matrices of a moving cloth.
+/// or trial included, as in any run), with [`linearised_integrators`]
+/// (block-Jacobi PCG, which stops at its cap from 100², left out). Unlike
+/// `linearised-step`, every step starts where the last one ended, so a
+/// factor or hierarchy kept from earlier steps meets the matrices of a
+/// moving cloth.
 fn runs(c: &mut Criterion) {
     let mut group = c.benchmark_group("run");
     group.sample_size(10);
     for n in sides("HOOKE_RUN_SIDES", &[50, 100]) {
         let system = cloth(n, DAMPING);
         let start = wavy(&system);
-        let linearised = |solver| Implicit::backward_euler().with_solver(solver).linearized();
-        let amg = LinearSolver::Amg(PcgSettings::default());
-        let mut integrators: Vec<(&str, Fresh)> = vec![
-            (
-                "auto",
-                Box::new(move || Box::new(linearised(LinearSolver::Auto))),
-            ),
-            ("amg", Box::new(move || Box::new(linearised(amg)))),
-            (
-                "amg-smoother-only",
-                Box::new(move || {
-                    Box::new(linearised(amg).with_amg_renewal(AmgRenewal::SmootherOnly))
-                }),
-            ),
-        ];
-        if n <= 400 {
-            integrators.push((
-                "cholesky",
-                Box::new(move || Box::new(linearised(LinearSolver::Cholesky))),
-            ));
-            integrators.push((
-                "fast-mass-spring-10",
-                Box::new(|| Box::new(FastMassSpring::default())),
-            ));
-        }
-        for (name, integrator) in integrators {
+        for (name, integrator) in linearised_integrators(n, 0) {
             let mut state = start.clone();
             let mut fresh = integrator();
             let (mut iterations, mut solvers) = (0, Vec::new());

@@ -228,6 +228,16 @@ pub enum AmgRenewal {
     SmootherOnly,
 }
 
+impl AmgRenewal {
+    /// The renewal of a solve that renews no more than the policy asks.
+    fn routine(self) -> Renewal {
+        match self {
+            Self::EverySolve => Renewal::Values,
+            Self::SmootherOnly => Renewal::Smoother,
+        }
+    }
+}
+
 /// The multigrid hierarchy of [`LinearSolver::Amg`] and how much of it the
 /// next solve renews.
 #[derive(Debug)]
@@ -256,7 +266,7 @@ impl AmgState {
             amg: None,
             policy,
             baseline: 0,
-            next: Self::routine(policy),
+            next: policy.routine(),
         }
     }
 
@@ -265,18 +275,10 @@ impl AmgState {
         *self = Self::new(self.policy);
     }
 
-    /// The renewal of a solve that renews no more than `policy` asks.
-    fn routine(policy: AmgRenewal) -> Renewal {
-        match policy {
-            AmgRenewal::EverySolve => Renewal::Values,
-            AmgRenewal::SmootherOnly => Renewal::Smoother,
-        }
-    }
-
     /// The renewal after a solve of `iterations` that followed `renewal`
     /// (see [`AmgRenewal`]).
     fn after(&mut self, renewal: Renewal, iterations: usize) {
-        let routine = Self::routine(self.policy);
+        let routine = self.policy.routine();
         self.next = if renewal == Renewal::Hierarchy || self.baseline == 0 {
             self.baseline = iterations.max(1);
             routine
@@ -743,10 +745,8 @@ fn trial(
                 // The first solve of the step's own systems sets the
                 // baseline of the renewals: the pseudo-random right-hand
                 // side takes more iterations than they do.
-                *amg = AmgState {
-                    amg: Some(hierarchy),
-                    ..AmgState::new(amg.policy)
-                };
+                amg.clear();
+                amg.amg = Some(hierarchy);
             }
         }
         Err(AmgError::NotPositiveDefinite(particle)) if !affordable => {
