@@ -115,7 +115,9 @@ fn backward_euler_rests_cloth_on_a_sphere_and_a_floor() {
 #[test]
 fn an_explicit_method_rests_cloth_on_a_sphere_and_a_floor() {
     for (label, obstacle) in [("sphere", sphere()), ("floor", floor())] {
-        let system = scene(obstacle);
+        // An explicit method cannot keep the cloth from passing through
+        // itself: it runs without self-collision.
+        let system = scene(obstacle).without_self_collision();
         let outcome = drop(&system, &mut VelocityVerlet::new(), 2e-4, 4.0);
         check(&format!("velocity Verlet on the {label}"), &outcome);
     }

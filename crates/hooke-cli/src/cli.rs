@@ -20,8 +20,8 @@ use crate::lab::{
 use crate::runner::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, run};
 use crate::summary::Summary;
 
-/// The built-in scene `hooke run` runs when given no scene: a stiff cloth
-/// pinned at two corners falling onto a sphere, with backward Euler.
+/// The built-in scene `hooke run` runs when given no scene: a free, stiff
+/// cloth falling onto a sphere on a floor, with backward Euler.
 pub const DEFAULT_SCENE: &str = "stiff-cloth";
 
 /// Simulate mass-spring systems and measure what each integrator costs.
@@ -232,6 +232,9 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
         100.0 * summary.max_strain,
         summary.contacts_max
     )?;
+    if let Some(line) = contact_line(summary) {
+        writeln!(out, "{line}")?;
+    }
     for warning in &summary.warnings {
         writeln!(out, "warning: {warning}")?;
     }
@@ -250,6 +253,25 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
         _ => writeln!(out, "pictures: none, no frame was written")?,
     }
     writeln!(out, "summary: {dir}/{SUMMARY_FILE}")
+}
+
+/// `contact: ...`, how close the collision surfaces came, for a run of a
+/// system that has any.
+fn contact_line(summary: &Summary) -> Option<String> {
+    let pairs = summary.close_pairs_max?;
+    let distance = summary.contact_distance.unwrap_or(f64::NAN);
+    let closest = summary.smallest_distance.map_or_else(
+        || format!("none within the contact distance {distance:.3e} m"),
+        |d| format!("smallest distance {d:.3e} m (contact distance {distance:.3e} m)"),
+    );
+    let end = summary
+        .intersecting_triangle_pairs
+        .map_or_else(String::new, |n| {
+            format!(", {n} intersecting triangle pairs at the end")
+        });
+    Some(format!(
+        "contact: at most {pairs} close pairs, {closest}{end}"
+    ))
 }
 
 /// `hooke scenes`.

@@ -10,7 +10,7 @@
 //! | `frame_00000.ply`, `frame_00001.ply`, ... | binary little-endian PLY, one file per written frame (see `hooke-viz`) |
 //! | `preview.png` | an RGBA PNG picture of the frame where the bodies rest on the obstacles |
 //! | `animation.gif` | a looping GIF of the rendered frames |
-//! | `summary.json` | the [`Summary`]: what ran, how long each step took, solver work, energy, strain, whether the state stayed finite |
+//! | `summary.json` | the [`Summary`]: what ran, how long each step took, solver work, energy, strain, how close the collision surfaces came, whether the state stayed finite |
 //!
 //! The pictures and files themselves are drawn and written by `hooke-viz`.
 //! This crate holds the `hooke` binary, so the library facade `hooke`
@@ -69,6 +69,7 @@ mod pictures;
 mod runner;
 mod step_record;
 mod summary;
+mod surface_record;
 
 pub use cli::{DEFAULT_SCENE, main, run_cli};
 pub use cli_error::CliError;

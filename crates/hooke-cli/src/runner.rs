@@ -6,6 +6,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use hooke_core::collision::intersect::intersecting_triangle_pairs;
 use hooke_core::{
     EnergyLog, Observer, Simulation, State, StepError, StepReport, StrainLog, System,
 };
@@ -18,6 +19,7 @@ use crate::frames::FrameWriter;
 use crate::pictures::write_pictures;
 use crate::step_record::StepRecord;
 use crate::summary::{Summary, median};
+use crate::surface_record::SurfaceRecord;
 
 /// The file name of the run summary in the output directory.
 pub const SUMMARY_FILE: &str = "summary.json";
@@ -94,9 +96,13 @@ impl RunOptions {
 /// of [`run_bounds`]) of an obstacle's surface.
 ///
 /// The run is a [`Simulation`] with observers: the frame writer, a record
-/// of every step's wall time and contacts, an [`EnergyLog`] and a
-/// [`StrainLog`] sampled at the written frames, and `progress`, the
-/// caller's (a progress bar), called after every step. The wall time spent
+/// of every step's wall time and contacts, a record of how close the
+/// collision surfaces came after every step (see
+/// [`Summary::close_pairs_max`]), an [`EnergyLog`] and a [`StrainLog`]
+/// sampled at the written frames, and `progress`, the caller's (a progress
+/// bar), called after every step. For a system with collision surfaces the
+/// last state's intersecting triangles are counted
+/// ([`Summary::intersecting_triangle_pairs`]). The wall time spent
 /// writing frames and pictures is [`Summary::output_s`].
 ///
 /// A step that fails (a non-finite state, a solver failure) or leaves a
@@ -131,12 +137,14 @@ pub fn run(
     let size = run_bounds(system, timing.duration).map_or(0.0, |b| b.radius());
     let mut frames = FrameWriter::new(&options.out, mesh, CONTACT_DISTANCE * size);
     let mut record = StepRecord::default();
+    let mut surfaces = SurfaceRecord::default();
     let (mut energy, mut strain) = (EnergyLog::default(), StrainLog::default());
     let mut budget = EnergyBudget::new(system);
     let mut state = system.initial_state();
     let run = Simulation::new(system, &mut integrator)
         .observe(1, &mut record)
         .observe(1, &mut budget)
+        .observe(1, &mut surfaces)
         .observe(every, &mut frames)
         .observe(every, &mut energy)
         .observe(every, &mut strain)
@@ -171,6 +179,11 @@ pub fn run(
     let energies = energy.samples();
     let (energy_gain, energy_gain_time) = budget.max_gain();
     let warnings = warnings(&total, &record, &budget);
+    let has_surfaces = system.surface_count() > 0;
+    let finite_end = state
+        .positions()
+        .iter()
+        .all(|x| x.iter().all(|c| c.is_finite()));
     let summary = Summary {
         scene: scene.name.clone(),
         integrator: integrator.name().to_owned(),
@@ -204,6 +217,11 @@ pub fn run(
         energy_gain_time,
         warnings,
         contacts_max: record.contacts_max,
+        contact_distance: has_surfaces.then(|| system.contact_distance()),
+        close_pairs_max: has_surfaces.then_some(surfaces.close_pairs_max),
+        smallest_distance: surfaces.smallest_distance,
+        intersecting_triangle_pairs: (has_surfaces && finite_end)
+            .then(|| intersecting_triangle_pairs(system.surfaces(), state.positions())),
         energy_initial: energies.first().map_or(f64::NAN, |s| s.energy.total()),
         energy_final: energy_of(system, &state),
         energy_max: energies

@@ -98,8 +98,34 @@ pub struct Summary {
     /// did not converge, linear solves stopped at their cap, energy
     /// corrected or gained; `hooke run` prints them.
     pub warnings: Vec<String>,
-    /// Most particle–obstacle contacts at the end of one step.
+    /// Most contacts at the end of one step as the integrator counts them
+    /// (`StepReport::contacts`): particles on or within the contact
+    /// distance of an obstacle, and for the implicit methods also the
+    /// pairs of surface primitives within the contact distance.
     pub contacts_max: usize,
+    /// The contact distance `d̂` of the system's collision surfaces, m
+    /// (see `docs/scene-format.md`); `None` for a system without collision
+    /// surfaces (then the three fields below are `None` too).
+    pub contact_distance: Option<f64>,
+    /// Most pairs of surface primitives that may collide — a point and a
+    /// triangle, or two edges, of two surfaces or of one that collides
+    /// with itself — within the contact distance at once, in the initial
+    /// state or after a step: pairs whose distance less their thickness
+    /// `(ξ₁ + ξ₂)/2` is below `d̂`, where the implicit methods' barrier
+    /// acts.
+    pub close_pairs_max: Option<usize>,
+    /// The smallest distance between two such primitives within the
+    /// contact distance over the initial state and the state after every
+    /// step, m: positive as long as no surface passed through another or
+    /// itself; `None` when no pair came within the contact distance (or
+    /// the system has no collision surfaces).
+    pub smallest_distance: Option<f64>,
+    /// Pairs of triangles sharing no particle that pass through each other
+    /// (an edge of one crosses the other) in the last state, whatever
+    /// their surfaces and whether they may collide: 0 when no surface ends
+    /// tangled in itself or another. `None` without collision surfaces or
+    /// for a last state that is not finite.
+    pub intersecting_triangle_pairs: Option<usize>,
     /// Energy of the initial state, J.
     pub energy_initial: f64,
     /// Energy of the last state, J.

@@ -3,6 +3,7 @@
 
 use std::collections::HashMap;
 
+use crate::collision::surface::CollisionMesh;
 use crate::error::{BuildError, Quantity, SpringParameter};
 use crate::system::fresh_system_id;
 use crate::{Obstacle, Path, Spring, System, Vec3};
@@ -34,6 +35,67 @@ pub struct SystemBuilder {
     gravity: Option<Vec3>,
     air_damping: Option<f64>,
     obstacles: Vec<Obstacle>,
+    surfaces: Vec<SurfaceEntry>,
+    contact_distance: Option<f64>,
+}
+
+/// A collision surface being added to a [`SystemBuilder`]: a body's
+/// triangles, whether they collide with each other and how thick the
+/// surface is.
+#[derive(Debug, Clone)]
+pub struct SurfaceEntry {
+    triangles: Vec<[usize; 3]>,
+    self_collision: bool,
+    thickness: f64,
+    friction: f64,
+}
+
+impl SurfaceEntry {
+    /// Whether pairs of the surface's own primitives collide (default
+    /// `true`); pairs with other surfaces always do.
+    ///
+    /// ```
+    /// # let mut b = hooke_core::SystemBuilder::new();
+    /// # let t = [b.particle(1.0, [0.0; 3]), b.particle(1.0, [1.0, 0.0, 0.0]), b.particle(1.0, [0.0, 1.0, 0.0])];
+    /// b.surface(&[t]).self_collision(false);
+    /// ```
+    pub fn self_collision(&mut self, on: bool) -> &mut Self {
+        self.self_collision = on;
+        self
+    }
+
+    /// The surface's thickness `ξ` in m (default 0): two surfaces are kept
+    /// `(ξ₁ + ξ₂)/2` apart plus the barrier's gap, an obstacle `ξ/2`.
+    ///
+    /// ```
+    /// # let mut b = hooke_core::SystemBuilder::new();
+    /// # let t = [b.particle(1.0, [0.0; 3]), b.particle(1.0, [1.0, 0.0, 0.0]), b.particle(1.0, [0.0, 1.0, 0.0])];
+    /// b.surface(&[t]).thickness(1e-3);
+    /// ```
+    pub fn thickness(&mut self, thickness: f64) -> &mut Self {
+        self.thickness = thickness;
+        self
+    }
+
+    /// The Coulomb friction coefficient `μ ≥ 0` of the surface against
+    /// itself and other surfaces (default [`SurfaceEntry::FRICTION`]); a
+    /// pair of surfaces takes the mean of theirs.
+    ///
+    /// ```
+    /// # let mut b = hooke_core::SystemBuilder::new();
+    /// # let t = [b.particle(1.0, [0.0; 3]), b.particle(1.0, [1.0, 0.0, 0.0]), b.particle(1.0, [0.0, 1.0, 0.0])];
+    /// b.surface(&[t]).friction(0.5);
+    /// ```
+    pub fn friction(&mut self, mu: f64) -> &mut Self {
+        self.friction = mu;
+        self
+    }
+}
+
+impl SurfaceEntry {
+    /// The default friction coefficient between surfaces, 0.3 (cloth on
+    /// cloth).
+    pub const FRICTION: f64 = 0.3;
 }
 
 /// A spring being added to a [`SystemBuilder`]; set its rest length and
@@ -204,6 +266,45 @@ impl SystemBuilder {
         self
     }
 
+    /// Adds a collision surface: a body's triangles (particle indices), which
+    /// collide with every other surface and, unless turned off, with
+    /// themselves; refine it through the returned [`SurfaceEntry`]. Only an
+    /// implicit step that minimises the incremental potential can keep
+    /// surfaces apart (see `hooke-implicit`).
+    ///
+    /// ```
+    /// let mut b = hooke_core::SystemBuilder::new();
+    /// let t = [b.particle(1.0, [0.0; 3]), b.particle(1.0, [1.0, 0.0, 0.0]), b.particle(1.0, [0.0, 1.0, 0.0])];
+    /// b.surface(&[t]).thickness(1e-3);
+    /// assert_eq!(b.build()?.surfaces().triangles().len(), 1);
+    /// # Ok::<(), hooke_core::BuildError>(())
+    /// ```
+    pub fn surface(&mut self, triangles: &[[usize; 3]]) -> &mut SurfaceEntry {
+        self.surfaces.push(SurfaceEntry {
+            triangles: triangles.to_vec(),
+            self_collision: true,
+            thickness: 0.0,
+            friction: SurfaceEntry::FRICTION,
+        });
+        self.surfaces.last_mut().expect("pushed above")
+    }
+
+    /// The distance `d̂` in m below which contact acts (the barrier's
+    /// activation distance, for obstacles and surfaces). Default: 10⁻³ of
+    /// the diagonal of the box around the initial positions and the
+    /// obstacles' reference points, and at most a quarter of the surfaces'
+    /// mean edge length, so that no two primitives of a surface at rest are
+    /// within it ([`System::contact_distance`]).
+    ///
+    /// ```
+    /// # let mut b = hooke_core::SystemBuilder::new();
+    /// b.contact_distance(5e-4);
+    /// ```
+    pub fn contact_distance(&mut self, distance: f64) -> &mut Self {
+        self.contact_distance = Some(distance);
+        self
+    }
+
     /// Validates everything and builds the system.
     ///
     /// # Errors
@@ -249,6 +350,12 @@ impl SystemBuilder {
         {
             return Err(BuildError::InvalidObstacle { obstacle, problem });
         }
+        let (surfaces, surface_properties) = self.collision_mesh()?;
+        let contact_distance = match self.contact_distance {
+            Some(d) if d.is_finite() && d > 0.0 => d,
+            Some(value) => return Err(BuildError::InvalidContactDistance { value }),
+            None => self.default_contact_distance(),
+        };
         let inverse_masses = self
             .masses
             .iter()
@@ -267,7 +374,106 @@ impl SystemBuilder {
             gravity: self.gravity,
             air_damping: self.air_damping,
             obstacles: self.obstacles.clone(),
+            surfaces,
+            surface_properties,
+            contact_distance,
         })
+    }
+
+    /// The collision mesh of the surfaces and their thicknesses and friction
+    /// coefficients, checked.
+    fn collision_mesh(&self) -> Result<(CollisionMesh, Vec<[f64; 2]>), BuildError> {
+        let particles = self.masses.len();
+        let mut mesh = CollisionMesh::new();
+        let mut owner = vec![usize::MAX; particles];
+        for (surface, entry) in self.surfaces.iter().enumerate() {
+            let problem = |problem: String| BuildError::InvalidSurface { surface, problem };
+            if !(entry.thickness.is_finite() && entry.thickness >= 0.0) {
+                return Err(problem(format!(
+                    "thickness must be finite and non-negative, got {}",
+                    entry.thickness
+                )));
+            }
+            if !(entry.friction.is_finite() && entry.friction >= 0.0) {
+                return Err(problem(format!(
+                    "friction must be finite and non-negative, got {}",
+                    entry.friction
+                )));
+            }
+            for (t, triangle) in entry.triangles.iter().enumerate() {
+                let [a, b, c] = *triangle;
+                if let Some(&p) = triangle.iter().find(|&&p| p >= particles) {
+                    return Err(problem(format!(
+                        "triangle {t} names particle {p}, but the system has {particles}"
+                    )));
+                }
+                if a == b || b == c || a == c {
+                    return Err(problem(format!(
+                        "triangle {t} repeats a particle: {triangle:?}"
+                    )));
+                }
+                for &p in triangle {
+                    if owner[p] != usize::MAX && owner[p] != surface {
+                        return Err(problem(format!(
+                            "particle {p} is already on surface {}",
+                            owner[p]
+                        )));
+                    }
+                    owner[p] = surface;
+                }
+            }
+            mesh.add_surface(&entry.triangles, entry.self_collision);
+        }
+        let properties = self
+            .surfaces
+            .iter()
+            .map(|s| [s.thickness, s.friction])
+            .collect();
+        Ok((mesh, properties))
+    }
+
+    /// 10⁻³ of the diagonal of the box around the initial positions and the
+    /// obstacles' reference points (1 mm for an empty or point-like
+    /// system), at most a quarter of the surfaces' mean edge length.
+    fn default_contact_distance(&self) -> f64 {
+        let (mut total, mut edges) = (0.0, 0usize);
+        for surface in &self.surfaces {
+            for t in &surface.triangles {
+                for k in 0..3 {
+                    total += (self.positions[t[k]] - self.positions[t[(k + 1) % 3]]).norm();
+                    edges += 1;
+                }
+            }
+        }
+        let finest = if edges > 0 {
+            0.25 * total / edges as f64
+        } else {
+            f64::INFINITY
+        };
+        self.scene_contact_distance().min(finest)
+    }
+
+    /// 10⁻³ of the scene's diagonal.
+    fn scene_contact_distance(&self) -> f64 {
+        let points = self
+            .positions
+            .iter()
+            .copied()
+            .chain(self.obstacles.iter().flat_map(|o| {
+                let (a, b) = o.shape.reference_points();
+                [a, b]
+            }));
+        let (mut lo, mut hi) = (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY));
+        for p in points {
+            lo = lo.inf(&p);
+            hi = hi.sup(&p);
+        }
+        let diagonal = (hi - lo).norm();
+        if diagonal.is_finite() && diagonal > 0.0 {
+            1e-3 * diagonal
+        } else {
+            1e-3
+        }
     }
 
     fn check_particles(&self) -> Result<(), BuildError> {

@@ -1,7 +1,8 @@
 //! Contact response between particles and a system's obstacles, applied by
 //! every integrator at the end of a step.
 
-use crate::{Obstacle, State, System, Vec3};
+use crate::collision::surface::CollisionMesh;
+use crate::{Obstacle, State, StepError, System, Vec3};
 
 /// Pushes a particle at `x` with velocity `v` out of `obstacle` at time `t`
 /// and applies Coulomb friction, and restitution if the contact is `new`;
@@ -60,6 +61,83 @@ pub fn respond_to_contact(
 }
 
 impl System {
+    /// The collision surfaces: the triangles of the bodies that collide, by
+    /// body ([`crate::SystemBuilder::surface`]).
+    #[must_use]
+    pub fn surfaces(&self) -> &CollisionMesh {
+        &self.surfaces
+    }
+
+    /// The number of collision surfaces.
+    #[must_use]
+    pub fn surface_count(&self) -> usize {
+        self.surface_properties.len()
+    }
+
+    /// The thickness `ξ` of surface `group` of [`System::surfaces`], m.
+    ///
+    /// # Panics
+    /// If there is no such surface.
+    #[must_use]
+    pub fn surface_thickness(&self, group: usize) -> f64 {
+        self.surface_properties[group][0]
+    }
+
+    /// The friction coefficient `μ` of surface `group` of
+    /// [`System::surfaces`] against surfaces.
+    ///
+    /// # Panics
+    /// If there is no such surface.
+    #[must_use]
+    pub fn surface_friction(&self, group: usize) -> f64 {
+        self.surface_properties[group][1]
+    }
+
+    /// Whether some pair of surface primitives can collide (a surface with
+    /// self-collision, or two surfaces).
+    #[must_use]
+    pub fn has_surface_contact(&self) -> bool {
+        self.surfaces.has_pairs()
+    }
+
+    /// The distance `d̂` below which contact acts, m.
+    #[must_use]
+    pub fn contact_distance(&self) -> f64 {
+        self.contact_distance
+    }
+
+    /// This system without self-collision: the same surfaces, none of which
+    /// collides with itself (different surfaces still do), as a new system.
+    #[must_use]
+    pub fn without_self_collision(&self) -> Self {
+        let mut system = self.clone();
+        system.id = crate::system::fresh_system_id();
+        let mut mesh = CollisionMesh::new();
+        for group in 0..self.surface_properties.len() {
+            let triangles: Vec<[usize; 3]> = (0..self.surfaces.triangles().len())
+                .filter(|&t| self.surfaces.triangle_group(t) == group)
+                .map(|t| self.surfaces.triangles()[t])
+                .collect();
+            mesh.add_surface(&triangles, false);
+        }
+        system.surfaces = mesh;
+        system
+    }
+
+    /// Checks that an integrator that only resolves contacts with obstacles
+    /// after its step (every explicit one, and the fast mass-spring step)
+    /// can run this system: that no surfaces collide.
+    ///
+    /// # Errors
+    /// [`StepError::SurfaceContactUnsupported`] naming `integrator`.
+    pub fn check_no_surface_contact(&self, integrator: &'static str) -> Result<(), StepError> {
+        if self.has_surface_contact() {
+            Err(StepError::SurfaceContactUnsupported { integrator })
+        } else {
+            Ok(())
+        }
+    }
+
     /// The obstacles particles cannot enter.
     #[must_use]
     pub fn obstacles(&self) -> &[Obstacle] {

@@ -134,6 +134,20 @@ pub enum BuildError {
         /// What is wrong, naming the field.
         problem: &'static str,
     },
+    /// A collision surface is invalid.
+    #[error("surface {surface}: {problem}")]
+    InvalidSurface {
+        /// Index of the surface, in the order added.
+        surface: usize,
+        /// What is wrong.
+        problem: String,
+    },
+    /// The contact distance is not positive and finite.
+    #[error("contact distance must be positive and finite, got {value}")]
+    InvalidContactDistance {
+        /// The value given, m.
+        value: f64,
+    },
     /// An obstacle with an invalid shape, path, restitution or friction.
     #[error("obstacle {obstacle}: {problem}")]
     InvalidObstacle {
@@ -209,6 +223,15 @@ pub enum StepError {
         iterations: usize,
         /// Relative residual reached.
         residual: f64,
+    },
+    /// An integrator that does not minimise the incremental potential was
+    /// given a system whose surfaces collide.
+    #[error(
+        "{integrator} cannot keep surfaces from passing through each other: a system with self-collision or several colliding surfaces needs an implicit step that minimises the incremental potential (backward-euler or bdf2, not linearized)"
+    )]
+    SurfaceContactUnsupported {
+        /// The integrator's name.
+        integrator: &'static str,
     },
     /// A system too large for a solver's 32-bit indices.
     #[error("{particles} particles and {springs} springs exceed the solver's 32-bit indices")]

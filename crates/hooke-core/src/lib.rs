@@ -54,6 +54,7 @@
 //! ```
 
 mod builder;
+pub mod collision;
 mod contact;
 mod energy;
 mod error;
@@ -69,7 +70,7 @@ mod state;
 mod step;
 mod system;
 
-pub use builder::{SpringEntry, SystemBuilder};
+pub use builder::{SpringEntry, SurfaceEntry, SystemBuilder};
 pub use contact::respond_to_contact;
 pub use energy::Energy;
 pub use error::{BuildError, ParameterError, Quantity, SpringParameter, StepError};

@@ -130,6 +130,29 @@ impl Shape {
         }
     }
 
+    /// Two points that span the shape's extent where it has one (a plane's
+    /// point twice): for the scale of a scene.
+    #[must_use]
+    pub fn reference_points(&self) -> (Vec3, Vec3) {
+        match *self {
+            Self::Plane { point, .. } => (point, point),
+            Self::Sphere { center, radius } => {
+                (center.add_scalar(-radius), center.add_scalar(radius))
+            }
+            Self::Box {
+                center,
+                half_extents,
+                rotation,
+            } => {
+                let reach = (rotation.abs() * half_extents).norm();
+                (center.add_scalar(-reach), center.add_scalar(reach))
+            }
+            Self::Capsule { a, b, radius } => {
+                (a.inf(&b).add_scalar(-radius), a.sup(&b).add_scalar(radius))
+            }
+        }
+    }
+
     /// The first thing wrong with the shape's parameters, if any.
     fn problem(&self) -> Option<&'static str> {
         let finite = |v: &Vec3| v.iter().all(|c| c.is_finite());

@@ -18,7 +18,7 @@ use crate::{History, State, StepReport, System, Vec3, check_step};
 /// struct Drift(StepBuffers);
 /// impl Integrator for Drift {
 ///     fn step(&mut self, sys: &System, s: &mut State, dt: f64) -> Result<StepReport, StepError> {
-///         self.0.begin(sys, s, dt, [])?;
+///         self.0.begin("drift", sys, s, dt, [])?;
 ///         for (i, (x, v)) in s.positions().iter().zip(s.velocities()).enumerate() {
 ///             (self.0.x[i], self.0.v[i]) = (x + dt * v, *v);
 ///         }
@@ -73,21 +73,24 @@ impl StepBuffers {
     /// Starts a step of `dt` from `state`: checks the arguments
     /// ([`check_step`]), takes the history (forgotten until
     /// [`StepBuffers::finish`] records the new one, so a failed step leaves
-    /// none) and sizes [`Self::x`], [`Self::v`] and every buffer of
+    /// none), checks that `integrator` (its name) can run the system — no
+    /// surfaces collide ([`System::check_no_surface_contact`]) — and sizes [`Self::x`], [`Self::v`] and every buffer of
     /// `scratch` to the state's particle count (allocating only when one
     /// grows).
     ///
     /// # Errors
-    /// [`StepError::InvalidTimestep`] or [`StepError::StateMismatch`]; the
-    /// state is untouched.
+    /// [`StepError::InvalidTimestep`], [`StepError::StateMismatch`] or
+    /// [`StepError::SurfaceContactUnsupported`]; the state is untouched.
     pub fn begin<'a>(
         &mut self,
+        integrator: &'static str,
         system: &System,
         state: &State,
         dt: f64,
         scratch: impl IntoIterator<Item = &'a mut Vec<Vec3>>,
     ) -> Result<Start, StepError> {
         check_step(system, state, dt)?;
+        system.check_no_surface_contact(integrator)?;
         let previous_dt = self.history.take(system, state);
         let n = state.len();
         self.x.resize(n, Vec3::zeros());

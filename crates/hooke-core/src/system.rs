@@ -3,6 +3,7 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use crate::collision::surface::CollisionMesh;
 use crate::{BuildError, Obstacle, Path, Spring, SpringParameter, State, StepError, Vec3};
 
 static NEXT_SYSTEM_ID: AtomicU64 = AtomicU64::new(1);
@@ -34,6 +35,11 @@ pub struct System {
     pub(crate) obstacles: Vec<Obstacle>,
     /// Scripted pins, sorted by particle.
     pub(crate) pin_paths: Vec<(usize, Path)>,
+    pub(crate) surfaces: CollisionMesh,
+    /// Per surface (group of `surfaces`): its thickness, m, and friction
+    /// coefficient.
+    pub(crate) surface_properties: Vec<[f64; 2]>,
+    pub(crate) contact_distance: f64,
 }
 
 pub(crate) fn fresh_system_id() -> u64 {

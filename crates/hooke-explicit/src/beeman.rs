@@ -56,8 +56,9 @@ impl Integrator for Beeman {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
+        let name = self.name();
         let buffers = [&mut self.a_prev, &mut self.a, &mut self.a_next];
-        let start = self.out.begin(system, state, dt, buffers)?;
+        let start = self.out.begin(name, system, state, dt, buffers)?;
         let out = &mut self.out;
         let (x0, v0) = (state.positions(), state.velocities());
         let h = dt;

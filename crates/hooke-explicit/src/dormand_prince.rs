@@ -278,10 +278,11 @@ impl Integrator for DormandPrince {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
+        let name = self.name();
         let stages = self.stage_v.iter_mut().chain(&mut self.stage_a);
         let start = self
             .out
-            .begin(system, state, dt, stages.chain([&mut self.stage_x]))?;
+            .begin(name, system, state, dt, stages.chain([&mut self.stage_x]))?;
         self.out.x.copy_from_slice(state.positions());
         self.out.v.copy_from_slice(state.velocities());
         let mut report = StepReport::default();

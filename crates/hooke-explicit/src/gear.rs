@@ -124,8 +124,12 @@ impl Integrator for Gear {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
+        let name = self.name();
         let buffers = [&mut self.r2, &mut self.r3, &mut self.r4, &mut self.a];
-        let previous = self.out.begin(system, state, dt, buffers)?.previous_dt();
+        let previous = self
+            .out
+            .begin(name, system, state, dt, buffers)?
+            .previous_dt();
         let h = dt;
         let mut evaluations = 1;
         match previous {

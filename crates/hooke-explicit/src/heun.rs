@@ -46,8 +46,9 @@ impl Integrator for Heun {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
+        let name = self.name();
         let buffers = [&mut self.a, &mut self.a_predicted];
-        self.out.begin(system, state, dt, buffers)?;
+        self.out.begin(name, system, state, dt, buffers)?;
         let (x0, v0) = (state.positions(), state.velocities());
         self.forces.accelerations(system, x0, v0, &mut self.a);
         let out = &mut self.out;

@@ -48,8 +48,9 @@ impl Integrator for Midpoint {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
+        let name = self.name();
         let buffers = [&mut self.a, &mut self.x_half, &mut self.v_half];
-        self.out.begin(system, state, dt, buffers)?;
+        self.out.begin(name, system, state, dt, buffers)?;
         let (x0, v0) = (state.positions(), state.velocities());
         self.forces.accelerations(system, x0, v0, &mut self.a);
         combine(&mut self.x_half, x0, &[(0.5 * dt, v0)]);

@@ -65,8 +65,9 @@ impl Integrator for PositionVerlet {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
+        let name = self.name();
         let buffers = [&mut self.x_prev, &mut self.a, &mut self.a_next];
-        let start = self.out.begin(system, state, dt, buffers)?;
+        let start = self.out.begin(name, system, state, dt, buffers)?;
         let (x0, v0) = (state.positions(), state.velocities());
         let mut evaluations = 1;
         if !start.continues_same_step() {

@@ -52,8 +52,9 @@ impl Integrator for Rk4 {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
+        let name = self.name();
         let buffers = [&mut self.a, &mut self.sum_x, &mut self.sum_v];
-        self.out.begin(system, state, dt, buffers)?;
+        self.out.begin(name, system, state, dt, buffers)?;
         let StepBuffers { x, v, .. } = &mut self.out;
         let (x0, v0) = (state.positions(), state.velocities());
         self.forces.accelerations(system, x0, v0, &mut self.a);

@@ -45,7 +45,8 @@ impl Integrator for SymplecticEuler {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
-        self.out.begin(system, state, dt, [&mut self.a])?;
+        let name = self.name();
+        self.out.begin(name, system, state, dt, [&mut self.a])?;
         let (x0, v0) = (state.positions(), state.velocities());
         self.forces.accelerations(system, x0, v0, &mut self.a);
         combine(&mut self.out.v, v0, &[(dt, &self.a)]);

@@ -53,9 +53,10 @@ impl Integrator for VelocityVerlet {
         state: &mut State,
         dt: f64,
     ) -> Result<StepReport, StepError> {
+        let name = self.name();
         let start = self
             .out
-            .begin(system, state, dt, [&mut self.a, &mut self.a_next])?;
+            .begin(name, system, state, dt, [&mut self.a, &mut self.a_next])?;
         let (x0, v0) = (state.positions(), state.velocities());
         let mut evaluations = 1;
         if !start.continues_same_step() {

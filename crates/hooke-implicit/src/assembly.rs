@@ -136,6 +136,7 @@ impl Assembler {
     ) -> Result<(), StepError> {
         let n = system.particle_count();
         let m = system.springs().len();
+        a.clear_contacts();
         self.directions.resize(m, Vec3::zeros());
         jacobi.inverses.resize(n, SymBlock::default());
         if n == 0 {

@@ -6,7 +6,8 @@
 use hooke_core::{State, StepError, StepReport, System, Vec3};
 
 use crate::assembly::Linearization;
-use crate::energy::{energy, obstacle_work, pin_work, rounding};
+use crate::contact::Contact;
+use crate::energy::{energy, pin_work, rounding};
 use crate::implicit::{Implicit, Scheme, Work};
 use crate::newton::{self, Iterates, Newton};
 use crate::solver::{Solve, topology};
@@ -117,7 +118,6 @@ impl Implicit {
         if previous.is_none() {
             dv.fill(Vec3::zeros());
         }
-        self.saved_contacts.clone_from(&self.contacts);
 
         let (compressed, solver, strict) = (self.compressed, self.solver, self.strict);
         let topology = topology(&mut self.topology, solver, self.amg_renewal, system)?;
@@ -127,20 +127,16 @@ impl Implicit {
             time,
             forcing: 0.0,
         };
-        let contacts = &mut self.contacts;
-        let constrained = (!system.obstacles().is_empty() || !system.pin_paths().is_empty())
-            && contacts.begin(
-                system,
-                x0,
-                v0,
-                state.touching(),
-                time,
-                h,
-                self.contact_margin,
-                topology.matrix_and_filters_mut().1,
-            );
-        // Baraff & Witkin's linearised step: the whole step when linearised,
-        // otherwise the first candidate for Newton's starting point.
+        let pinned = self.pins.begin(system, v0, time, h);
+        let mut contact = Contact::present(system).then(|| {
+            self.contact.begin(system, x0, time, h);
+            &mut self.contact
+        });
+        let has_contact = contact.is_some();
+        // Baraff & Witkin's linearised step: the whole step when
+        // linearised (without contact), otherwise the first candidate for
+        // Newton's starting point. Its assembly also freezes the dampers'
+        // directions at the step's start.
         let lin = Linearization {
             positions: x0,
             velocities: v0,
@@ -151,31 +147,40 @@ impl Implicit {
             freeze_directions: true,
         };
         solve.assemble(&mut self.assembler, topology, &lin, b)?;
-        if constrained {
-            contacts.prescribe(topology.matrix(), b);
-            contacts.add_friction(topology, v0, b);
-        }
-        solve.solve(topology, x0, b, dv, pcg, report)?;
-        let z = |i: usize| {
-            if constrained {
-                contacts.prescribed[i]
-            } else {
-                Vec3::zeros()
+        let lin_steps = if let Some(contact) = contact.as_deref_mut() {
+            // Newton starts from the feasible positions of the step's start
+            // or, if lower in Φ, from the inertial predictor vₙ + z as far
+            // towards it as no pair comes closer than a tenth of its gap.
+            let (start, prescribed) = (contact.start(), &self.pins.prescribed);
+            for_each_row(v, |i, v| {
+                *v = if system.is_pinned(i) {
+                    v0[i] + prescribed[i]
+                } else {
+                    (start[i] - x_tilde[i]) / beta_h
+                };
+            });
+            for_each_row(trial, |i, t| *t = v0[i] + prescribed[i] - v[i]);
+            for_each_row(x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
+            for_each_row(ahead, |i, a| *a = beta_h * trial[i]);
+            let tau = contact.limit(system, x, ahead);
+            for_each_row(trial, |i, t| *t = v[i] + tau * *t);
+            1
+        } else {
+            if pinned {
+                self.pins.prescribe(topology.matrix(), b);
             }
+            solve.solve(topology, x0, b, dv, pcg, report)?;
+            let prescribed = &self.pins.prescribed;
+            for_each_row(v, |i, v| *v = v0[i] + dv[i] + prescribed[i]);
+            for_each_row(trial, |i, t| *t = v0[i] + prescribed[i]);
+            0
         };
-        for_each_row(v, |i, v| *v = v0[i] + dv[i] + z(i));
-        for_each_row(trial, |i, t| *t = v0[i] + z(i));
-        if constrained {
-            let (matrix, filters) = topology.matrix_and_filters_mut();
-            contacts.release(matrix, dv, b, filters);
-        }
         let mut newton = Newton {
             system,
             solve,
             topology,
             assembler: &mut self.assembler,
-            contacts,
-            constrained,
+            contact: contact.as_deref_mut(),
             compressed,
             x_tilde,
             v_tilde,
@@ -183,27 +188,31 @@ impl Implicit {
             x,
             inertia,
             b,
+            motion: u,
             pcg,
             report,
             inexact: self.inexact_newton,
         };
-        let outcome = if self.linearized {
+        let outcome = if self.linearized && !has_contact {
             newton::Outcome {
                 converged: true,
                 iterations: 1,
                 residual: 0.0,
             }
         } else {
-            // Newton starts where Φ is lower: at the linearised step's
-            // velocities or at vₙ with the prescribed velocity changes
-            // applied. Every Newton step then lies in the free directions.
-            let linearized = newton.potential(v);
-            let at_start = newton.potential(trial);
-            let start = if at_start.value < linearized.value {
+            // Newton starts where Φ is lower: at the first candidate (the
+            // linearised step's velocities, or the feasible start) or at the
+            // second (vₙ with the prescribed velocity changes applied, as far
+            // as contact allows). Every Newton step then lies in the free
+            // directions. With contact, the linearised step is one Newton
+            // step from there, bounded by collision detection.
+            let first = newton.potential(v);
+            let second = newton.potential(trial);
+            let start = if second.value < first.value {
                 std::mem::swap(v, trial);
-                at_start
+                second
             } else {
-                linearized
+                first
             };
             let mut iterates = Iterates {
                 v,
@@ -212,46 +221,28 @@ impl Implicit {
                 ahead,
                 look,
             };
-            let mut outcome = newton.minimize(
-                &mut iterates,
-                v0,
-                start,
-                self.newton_iterations,
-                self.newton_tolerance,
-            )?;
-            // Particles the converged step carries into an obstacle are held
-            // on its surface and the iteration goes on, until none is.
-            while outcome.converged && !system.obstacles().is_empty() {
-                newton.positions(iterates.v);
-                let held = newton.hold_penetrating((x0, v0), iterates.v, time, h);
-                if held == 0 {
-                    break;
-                }
-                let start = newton.potential(iterates.v);
-                let more = newton.minimize(
-                    &mut iterates,
-                    v0,
-                    start,
-                    self.newton_iterations.saturating_sub(outcome.iterations),
-                    self.newton_tolerance,
-                )?;
-                outcome = newton::Outcome {
-                    iterations: outcome.iterations + more.iterations,
-                    ..more
-                };
+            let (iterations, tolerance) = if self.linearized {
+                (lin_steps, f64::INFINITY)
+            } else {
+                (self.newton_iterations, self.newton_tolerance)
+            };
+            let mut outcome = newton.minimize(&mut iterates, v0, start, iterations, tolerance)?;
+            if self.linearized {
+                outcome.converged = true;
             }
             outcome
         };
-        let constrained = newton.constrained;
         for_each_row(x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
 
-        // The energy test.
-        let (before, magnitude_before) = energy(system, x0, v0);
-        let (after, magnitude_after) = energy(system, x, v);
+        // The energy test, the contact barrier counted as a potential.
+        let (mut before, magnitude_before) = energy(system, x0, v0);
+        let (mut after, magnitude_after) = energy(system, x, v);
         let two_step = c.past > 0.0;
         let mut work = pin_work(system, x0, x);
-        if constrained && !system.obstacles().is_empty() {
-            work += obstacle_work(system, self.contacts.held(), x, v, v_tilde, beta_h, trial);
+        if let Some(contact) = contact.as_deref_mut() {
+            before += contact.start_energy(system, x0, time);
+            after += contact.barrier_energy(system, x);
+            work += contact.obstacle_work(system, (x0, time), x, v);
         }
         let excess = after - before - work - rounding(magnitude_before.max(magnitude_after));
         // Converged backward-Euler steps are held to the energy test; BDF2's
@@ -273,7 +264,6 @@ impl Implicit {
             && !at_floor
             && (!outcome.converged || (tested && excess > 0.0) || too_large)
         {
-            self.contacts.clone_from(&self.saved_contacts);
             self.history = saved_history;
             return Ok(Outcome::Rejected { error });
         }
@@ -295,6 +285,7 @@ impl Implicit {
                 report.energy_corrections += 1;
             }
         }
+        let touching = contact.map_or(0, |contact| contact.end_step(system, x));
         state.commit(x, v, end.unwrap_or(time + h))?;
         // The buffers swapped out of the state hold xₙ, vₙ: BDF2's next
         // history, after xₙ₋₁ moves to the error estimate's.
@@ -306,9 +297,10 @@ impl Implicit {
         std::mem::swap(v_prev, v);
         self.history.record(system, state, h);
         report.accepted_steps += 1;
-        // The particles the step held on obstacles, and those the end of the
-        // step pushes out of one.
-        report.contacts = self.contacts.held().count() + system.end_step(state);
+        // The pairs within the contact distance, and the particles the end
+        // of the step pushes out of an obstacle (none, as no iterate
+        // crosses one).
+        report.contacts = touching + system.end_step(state);
         Ok(Outcome::Accepted {
             easy: 3 * outcome.iterations <= self.newton_iterations,
             error,

@@ -60,8 +60,8 @@ impl Preconditioner for BlockJacobi {
 /// below `‖b‖`.)
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PcgSettings {
-    tolerance: f64,
-    max_iterations: usize,
+    pub(crate) tolerance: f64,
+    pub(crate) max_iterations: usize,
 }
 
 impl PcgSettings {

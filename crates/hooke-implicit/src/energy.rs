@@ -14,8 +14,9 @@
 //! with `|E|` the sum of the terms' magnitudes and `ε` the machine epsilon:
 //! the rounding of the sums, nothing more. `W` is estimated by the
 //! trapezoid rule for pins, `½(∇ₚV(xₙ) + ∇ₚV(xₙ₊₁))·(xₚ,ₙ₊₁ − xₚ,ₙ)`, and as
-//! the contact impulse times the obstacle's velocity for moving obstacles;
-//! it is zero in the common case of fixed pins and resting obstacles.
+//! the contact forces times the obstacle's displacement for moving
+//! obstacles (the `contact` module, which also adds the barrier's energy to
+//! `E`); it is zero in the common case of fixed pins and resting obstacles.
 
 use hooke_core::{System, Vec3};
 
@@ -65,37 +66,4 @@ pub(crate) fn pin_work(system: &System, x0: &[Vec3], x1: &[Vec3]) -> f64 {
         }
     }
     work
-}
-
-/// The work moving obstacles did on the particles they held, `Σ Jᵢ·uᵢ`
-/// over `held = (i, uᵢ)`, with the contact impulse
-/// `Jᵢ = mᵢ(vᵢ − ṽᵢ) − βh fᵢ(x, v)` that the step's equations leave on a
-/// held particle. `force` is scratch of one entry per particle.
-pub(crate) fn obstacle_work(
-    system: &System,
-    held: impl Iterator<Item = (usize, Vec3)> + Clone,
-    x: &[Vec3],
-    v: &[Vec3],
-    v_tilde: &[Vec3],
-    beta_h: f64,
-    force: &mut [Vec3],
-) -> f64 {
-    if held.clone().all(|(_, u)| u == Vec3::zeros()) {
-        return 0.0;
-    }
-    let g = system.gravity().unwrap_or_else(Vec3::zeros);
-    let gamma = system.air_damping().unwrap_or(0.0);
-    for (i, f) in force.iter_mut().enumerate() {
-        *f = system.masses()[i] * g - gamma * v[i];
-    }
-    for s in system.springs() {
-        let f = s.force(x[s.i], x[s.j], v[s.i], v[s.j]);
-        force[s.i] += f;
-        force[s.j] -= f;
-    }
-    held.map(|(i, u)| {
-        let impulse = system.masses()[i] * (v[i] - v_tilde[i]) - beta_h * force[i];
-        impulse.dot(&u)
-    })
-    .sum()
 }

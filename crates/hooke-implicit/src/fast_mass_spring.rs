@@ -206,7 +206,7 @@ impl Integrator for FastMassSpring {
             y,
             d,
         } = self;
-        out.begin(system, state, dt, [&mut *y])?;
+        out.begin(Self::NAME, system, state, dt, [&mut *y])?;
         d.resize(system.springs().len(), Vec3::zeros());
         if matrix
             .as_ref()

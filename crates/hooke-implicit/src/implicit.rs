@@ -4,8 +4,9 @@ use hooke_core::{CompressedSprings, History, Integrator, ParameterError, Vec3};
 
 use crate::assembly::Assembler;
 use crate::cg::PcgWorkspace;
-use crate::contact::Contacts;
+use crate::contact::Contact;
 use crate::error_control::ErrorControl;
+use crate::pins::Pins;
 use crate::solver::{AmgRenewal, LinearSolver, Topology};
 
 /// The time discretisation. Both are implicit, A-stable and L-stable: stiff
@@ -168,10 +169,8 @@ pub struct Implicit {
     pub(crate) earlier: Option<f64>,
     pub(crate) topology: Option<Topology>,
     pub(crate) assembler: Assembler,
-    pub(crate) contacts: Contacts,
-    /// The contacts at the start of a substep, restored when it is rejected.
-    pub(crate) saved_contacts: Contacts,
-    pub(crate) contact_margin: f64,
+    pub(crate) pins: Pins,
+    pub(crate) contact: Contact,
     pub(crate) work: Work,
 }
 
@@ -264,9 +263,8 @@ impl Implicit {
             earlier: None,
             topology: None,
             assembler: Assembler::default(),
-            contacts: Contacts::default(),
-            saved_contacts: Contacts::default(),
-            contact_margin: 1e-4,
+            pins: Pins::default(),
+            contact: Contact::default(),
             work: Work::default(),
         }
     }
@@ -403,30 +401,6 @@ impl Implicit {
     pub fn with_compressed_springs(mut self, compressed: CompressedSprings) -> Self {
         self.compressed = compressed;
         self
-    }
-
-    /// Particles within `margin` m of an obstacle that approach or rest on
-    /// it are constrained in the step's solve (default 0.1 mm; see the crate
-    /// docs on contacts).
-    ///
-    /// ```
-    /// let integrator = hooke_implicit::Implicit::backward_euler().with_contact_margin(1e-3)?;
-    /// # Ok::<(), hooke_core::ParameterError>(())
-    /// ```
-    ///
-    /// # Errors
-    /// [`ParameterError`] for a margin that is negative or not finite.
-    pub fn with_contact_margin(mut self, margin: f64) -> Result<Self, ParameterError> {
-        if !(margin.is_finite() && margin >= 0.0) {
-            return Err(ParameterError::new(
-                self.name(),
-                "contact_margin",
-                margin,
-                "finite and non-negative",
-            ));
-        }
-        self.contact_margin = margin;
-        Ok(self)
     }
 
     /// Chooses the substeps by their estimated local error (see

@@ -54,31 +54,28 @@
 //! of substeps, because rounding limits how far one solve can see
 //! (`Implicit::MAX_CONDITION`).
 //!
-//! # Contacts and scripted pins
+//! # Contact and scripted pins
 //!
-//! Obstacles and scripted pins act as Baraff–Witkin constraints inside the
-//! solve: a constrained particle's filter removes the constrained
-//! directions from the conjugate-gradient iteration (or from the Cholesky
-//! system) and its velocity change along them is prescribed, `Δv = y + z`
-//! with `S A y = S (b − A z)`. A scripted pin ends the step at its path's
-//! velocity. A particle that would reach an obstacle within the step is
-//! held along the normal so that it lands on the surface (never inside it),
-//! then rebounds with the obstacle's restitution, rests, or — when the
-//! constraint's normal impulse `λ = n·(A Δv − b)` turns negative, i.e. the
-//! constraint would hold it down — is released at once. Coulomb friction is
-//! part of the solve too: a constrained particle with tangential relative
-//! velocity `v_t` adds the damping `c = μλ / max(|v_t|, ε)` to its row,
-//! `(A + c I) Δv = b − c v_t`, with `λ` the normal impulse of the solve
-//! before and `ε` = 10⁻⁵ m/s. That is Coulomb's law with sticking smoothed
-//! into viscous creep slower than `ε`, linearised so that each Newton
-//! iteration sees the friction the springs work against, and the gradient
-//! of a convex dissipation potential that the line search includes (the
-//! `contact` module docs give the equations). Friction applied after the
-//! solve instead stops particles that the solve let slide, and their
-//! neighbours' springs stay stretched: on the default scene with friction
-//! 0.3 that stored up to 2 200 J in a 2.35 J scene; inside the solve the
-//! energy never rises above its start. Particles within [`Implicit::with_contact_margin`] of an obstacle count
-//! as touching it.
+//! Contact is part of the potential the converged step minimises (Li et
+//! al., *Incremental Potential Contact*, 2020): every particle close to an
+//! obstacle and every close pair of surface primitives — a point and a
+//! triangle, two edges, of one cloth folding onto itself or of two bodies —
+//! adds a smooth log barrier on its gap, `κ b(g)`, and a lagged friction
+//! potential to `Φ`. Newton's method sees their gradients and Hessians
+//! (projected onto their positive parts), and continuous collision
+//! detection bounds every line search, so no iterate ever crosses an
+//! obstacle or a surface and `Φ` keeps one shape through the iteration
+//! (contacts never switch on and off as constraints). The `contact` module
+//! gives the equations, the barrier stiffness, the friction's smoothing
+//! speed and the handling of moving obstacles; restitution applies to the
+//! explicit integrators' contact response only. With contact the
+//! linearised step is one Newton step from the feasible start, bounded by
+//! collision detection.
+//!
+//! Pins are removed unknowns: a pinned particle's filter removes it from
+//! the conjugate-gradient iteration (or from the Cholesky system), and a
+//! scripted pin's velocity change is prescribed, `Δv = y + z` with
+//! `S A y = S (b − A z)`, so it ends the step at its path's velocity.
 //!
 //! # Storage
 //!
@@ -130,6 +127,7 @@ mod implicit;
 mod matrix;
 mod newton;
 mod pattern;
+mod pins;
 mod solver;
 mod step;
 mod vector;

@@ -39,12 +39,23 @@ use crate::vector::{MIN_CHUNK, PARALLEL_MIN_PARTICLES};
 /// long, so a chunk's springs reach only into itself and the next chunk: the
 /// even chunks run at once, each owning itself and its successor, then the
 /// odd ones.
+///
+/// Contact adds terms beyond the springs' pattern: a block on the diagonal
+/// of a particle near an obstacle (kept in its diagonal block too) and a
+/// block between two particles of a close pair of surface primitives. The
+/// product adds them after the springs' terms; a matrix without contacts
+/// holds none.
 #[derive(Debug, Clone)]
 pub struct BlockMatrix {
     pub(crate) pattern: Pattern,
     pub(crate) diagonal: Vec<SymBlock>,
     pub(crate) mass: Vec<f64>,
     pub(crate) springs: Vec<SymBlock>,
+    /// Contact blocks on the diagonal, `(i, B)`: `yᵢ += B xᵢ`.
+    pub(crate) contact_rows: Vec<(u32, SymBlock)>,
+    /// Contact blocks between particles, `(i, j, B)` with `i ≠ j`:
+    /// `yᵢ += B xⱼ`, `yⱼ += Bᵀ xᵢ`.
+    pub(crate) contact_pairs: Vec<(u32, u32, Mat3)>,
 }
 
 impl BlockMatrix {
@@ -58,7 +69,34 @@ impl BlockMatrix {
             diagonal: vec![SymBlock::default(); rows],
             mass: vec![0.0; rows],
             springs: vec![SymBlock::default(); slots],
+            contact_rows: Vec::new(),
+            contact_pairs: Vec::new(),
         }
+    }
+
+    /// Whether the matrix holds blocks between particles that no spring
+    /// joins (close pairs of surface primitives in contact).
+    #[must_use]
+    pub fn has_contact_pairs(&self) -> bool {
+        !self.contact_pairs.is_empty()
+    }
+
+    /// Forgets the contact blocks (the diagonal blocks are overwritten by
+    /// the next assembly).
+    pub(crate) fn clear_contacts(&mut self) {
+        self.contact_rows.clear();
+        self.contact_pairs.clear();
+    }
+
+    /// Adds the contact block `B` (symmetric) to particle `i`'s diagonal.
+    pub(crate) fn add_contact_row(&mut self, i: usize, block: SymBlock) {
+        self.diagonal[i].add_assign(&block);
+        self.contact_rows.push((i as u32, block));
+    }
+
+    /// Adds the contact block `B` at `(i, j)` and `Bᵀ` at `(j, i)`, `i ≠ j`.
+    pub(crate) fn add_contact_pair(&mut self, i: usize, j: usize, block: Mat3) {
+        self.contact_pairs.push((i as u32, j as u32, block));
     }
 
     /// The sparsity pattern.
@@ -110,6 +148,10 @@ impl BlockMatrix {
                 push(j, i, block);
             }
         }
+        for &(i, j, block) in &self.contact_pairs {
+            push(i as usize, j as usize, block);
+            push(j as usize, i as usize, block.transpose());
+        }
         let dofs = 3 * self.rows();
         faer::sparse::SparseColMat::try_new_from_triplets(dofs, dofs, &triplets)
             .expect("block entries are in range and distinct")
@@ -144,11 +186,26 @@ impl BlockMatrix {
                         let start = (2 * k + 1) * chunk;
                         self.product(start..(start + chunk).min(n), start, x, pair);
                     });
+                self.contact_product(x, y);
                 return;
             }
         }
         y.fill(Vec3::zeros());
         self.product(0..n, 0, x, y);
+        self.contact_product(x, y);
+    }
+
+    /// Adds the contact blocks' terms to `y`.
+    fn contact_product(&self, x: &[Vec3], y: &mut [Vec3]) {
+        for (i, block) in &self.contact_rows {
+            let i = *i as usize;
+            y[i] += block.mul(x[i]);
+        }
+        for &(i, j, block) in &self.contact_pairs {
+            let (i, j) = (i as usize, j as usize);
+            y[i] += block * x[j];
+            y[j] += block.tr_mul(&x[i]);
+        }
     }
 
     /// Adds the terms of `rows` and their upper springs to `y`, which holds

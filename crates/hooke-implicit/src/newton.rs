@@ -5,7 +5,7 @@
 use hooke_core::{CompressedSprings, StepError, StepReport, System, Vec3};
 
 use crate::assembly::{Assembler, Linearization, Potential};
-use crate::contact::Contacts;
+use crate::contact::Contact;
 use crate::solver::{Solve, Topology};
 use crate::vector::{dot, for_each_row, for_each_row2};
 
@@ -59,15 +59,16 @@ pub(crate) struct Iterates<'a> {
 
 /// What one (sub)step's Newton iterations share: the step's predictor
 /// `x = x̃ + βh v` and `ṽ`, the linear solver and its topology, the
-/// contacts, and scratch for positions, the inertia term and the
-/// right-hand side.
+/// contact terms, and scratch for positions, the inertia term, the
+/// right-hand side and a motion.
 pub(crate) struct Newton<'a> {
     pub(crate) system: &'a System,
     pub(crate) solve: Solve<'a>,
     pub(crate) topology: &'a mut Topology,
     pub(crate) assembler: &'a mut Assembler,
-    pub(crate) contacts: &'a mut Contacts,
-    pub(crate) constrained: bool,
+    /// The contact terms of `Φ`, in a system with obstacles or colliding
+    /// surfaces.
+    pub(crate) contact: Option<&'a mut Contact>,
     pub(crate) compressed: CompressedSprings,
     pub(crate) x_tilde: &'a [Vec3],
     pub(crate) v_tilde: &'a [Vec3],
@@ -75,6 +76,8 @@ pub(crate) struct Newton<'a> {
     pub(crate) x: &'a mut [Vec3],
     pub(crate) inertia: &'a mut [Vec3],
     pub(crate) b: &'a mut [Vec3],
+    /// Scratch for the motion `βh α δ` that collision detection checks.
+    pub(crate) motion: &'a mut [Vec3],
     pub(crate) pcg: &'a mut crate::cg::PcgWorkspace,
     pub(crate) report: &'a mut StepReport,
     /// Whether iterative solves stop at the forcing term ([`forcing`]).
@@ -88,28 +91,8 @@ impl Newton<'_> {
         for_each_row(self.x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
     }
 
-    /// Holds the particles that the positions in the scratch put inside an
-    /// obstacle ([`Contacts::hold_penetrating`]), setting their normal
-    /// velocities in `v`; returns how many.
-    pub(crate) fn hold_penetrating(
-        &mut self,
-        start: (&[Vec3], &[Vec3]),
-        v: &mut [Vec3],
-        time: f64,
-        h: f64,
-    ) -> usize {
-        let filters = self.topology.matrix_and_filters_mut().1;
-        let held = self
-            .contacts
-            .hold_penetrating(self.system, start, self.x, v, time, h, filters);
-        if held > 0 {
-            self.constrained = true;
-        }
-        held
-    }
-
-    /// `Φ(v) + D(v)` (the friction's dissipation potential with the bounds of
-    /// the last solve) and its rounding level.
+    /// `Φ(v)`, its contact terms included (infinite where a gap is not
+    /// positive), and its rounding level.
     pub(crate) fn potential(&mut self, v: &[Vec3]) -> Potential {
         self.positions(v);
         let beta_h = self.beta_h;
@@ -121,8 +104,10 @@ impl Newton<'_> {
             self.v_tilde,
             beta_h,
         );
-        if self.constrained {
-            potential.value += self.contacts.dissipation(v);
+        if let Some(contact) = self.contact.as_deref_mut() {
+            let terms = contact.value(self.system, self.x, v, beta_h);
+            potential.value += terms;
+            potential.rounding += f64::EPSILON * terms.abs();
         }
         potential
     }
@@ -162,18 +147,12 @@ impl Newton<'_> {
     /// with the exact stiffness blocks, or — where that system is not
     /// positive definite or its solution does not descend, and the
     /// integrator clamps compressed springs — with compressed springs
-    /// clamped, and solves it in the free directions. After a step
-    /// of the iteration (not a look-ahead) the contacts whose constraints
-    /// pull are released. Returns the slope `∇Φ·δ`.
+    /// clamped, adds the contact terms' gradients and projected Hessians,
+    /// and solves it in the free directions. Returns the slope `∇Φ·δ`.
     ///
     /// # Errors
     /// Assembly and solver errors.
-    fn direction(
-        &mut self,
-        v: &[Vec3],
-        delta: &mut [Vec3],
-        release: bool,
-    ) -> Result<f64, StepError> {
+    fn direction(&mut self, v: &[Vec3], delta: &mut [Vec3]) -> Result<f64, StepError> {
         let (system, x_tilde, v_tilde, beta_h) =
             (self.system, self.x_tilde, self.v_tilde, self.beta_h);
         let masses = system.masses();
@@ -198,8 +177,10 @@ impl Newton<'_> {
                 .solve
                 .assemble(self.assembler, self.topology, &lin, self.b)
                 .and_then(|()| {
-                    if self.constrained {
-                        self.contacts.add_friction(self.topology, v, self.b);
+                    if let Some(contact) = self.contact.as_deref_mut() {
+                        let a = self.topology.matrix_mut();
+                        contact.add(system, self.x, v, beta_h, self.b, a);
+                        self.topology.contacts_added();
                     }
                     self.solve
                         .solve(self.topology, self.x, self.b, delta, self.pcg, self.report)
@@ -211,10 +192,6 @@ impl Newton<'_> {
                 Ok(()) => break,
             }
             hessian = CompressedSprings::Clamped;
-        }
-        if release && self.constrained {
-            let (matrix, filters) = self.topology.matrix_and_filters_mut();
-            self.contacts.release(matrix, delta, self.b, filters);
         }
         Ok(-dot(self.b, delta))
     }
@@ -273,15 +250,14 @@ impl Newton<'_> {
             if self.inexact {
                 self.solve.forcing = forcing(outcome.residual);
             }
-            let slope = self.direction(it.v, it.delta, true)?;
+            let slope = self.direction(it.v, it.delta)?;
             outcome.iterations += 1;
-            if self.constrained {
-                // The solve updated the friction bounds and may have released
-                // contacts: Φ + D at the iterate as the line search sees it.
-                current = self.potential(it.v);
-            }
             outcome.residual = self.decrement(slope, it.v, it.delta, v0);
-            if outcome.residual <= tolerance || 0.5 * slope.abs() <= current.rounding {
+            // The longest multiple of δ collision detection allows.
+            let limit = self.limit(it.v, it.delta, MAX_EXTRAPOLATION);
+            if limit >= 1.0
+                && (outcome.residual <= tolerance || 0.5 * slope.abs() <= current.rounding)
+            {
                 add(it.v, it.delta);
                 outcome.converged = true;
                 break;
@@ -289,36 +265,40 @@ impl Newton<'_> {
             let sufficient = |value: Potential, alpha: f64| {
                 value.value <= current.value + ARMIJO * alpha * slope
             };
-            combine(it.trial, it.v, 1.0, it.delta);
-            let full = self.potential(it.trial);
-            if sufficient(full, 1.0) {
-                current = full;
-                let mut alpha = 2.0;
-                while alpha <= MAX_EXTRAPOLATION {
-                    combine(it.look, it.v, alpha, it.delta);
-                    let further = self.potential(it.look);
-                    if further.value >= current.value {
-                        break;
+            if limit >= 1.0 {
+                combine(it.trial, it.v, 1.0, it.delta);
+                let full = self.potential(it.trial);
+                if sufficient(full, 1.0) {
+                    current = full;
+                    let mut alpha = 2.0;
+                    while alpha <= limit {
+                        combine(it.look, it.v, alpha, it.delta);
+                        let further = self.potential(it.look);
+                        if further.value >= current.value {
+                            break;
+                        }
+                        current = further;
+                        std::mem::swap(it.trial, it.look);
+                        alpha *= 2.0;
                     }
-                    current = further;
-                    std::mem::swap(it.trial, it.look);
-                    alpha *= 2.0;
-                }
-                std::mem::swap(it.v, it.trial);
-                continue;
-            }
-            if outcome.iterations < max_iterations {
-                self.direction(it.trial, it.ahead, false)?;
-                outcome.iterations += 1;
-                combine(it.look, it.trial, 1.0, it.ahead);
-                let ahead = self.potential(it.look);
-                if sufficient(ahead, 1.0) {
-                    current = ahead;
-                    std::mem::swap(it.v, it.look);
+                    std::mem::swap(it.v, it.trial);
                     continue;
                 }
+                if outcome.iterations < max_iterations {
+                    self.direction(it.trial, it.ahead)?;
+                    outcome.iterations += 1;
+                    if self.limit(it.trial, it.ahead, 1.0) >= 1.0 {
+                        combine(it.look, it.trial, 1.0, it.ahead);
+                        let ahead = self.potential(it.look);
+                        if sufficient(ahead, 1.0) {
+                            current = ahead;
+                            std::mem::swap(it.v, it.look);
+                            continue;
+                        }
+                    }
+                }
             }
-            let mut alpha = 0.5;
+            let mut alpha = if limit >= 1.0 { 0.5 } else { limit };
             loop {
                 combine(it.trial, it.v, alpha, it.delta);
                 let value = self.potential(it.trial);
@@ -334,6 +314,21 @@ impl Newton<'_> {
             std::mem::swap(it.v, it.trial);
         }
         Ok(outcome)
+    }
+
+    /// The longest multiple `α ≤ longest` of the step `δ` from `v` that
+    /// collision detection allows: `longest` without contact terms,
+    /// otherwise `longest · τ` with `τ` the fraction of the motion
+    /// `βh longest δ` that keeps every pair at a tenth of its gap.
+    fn limit(&mut self, v: &[Vec3], delta: &[Vec3], longest: f64) -> f64 {
+        if self.contact.is_none() {
+            return longest;
+        }
+        self.positions(v);
+        let scale = self.beta_h * longest;
+        for_each_row(self.motion, |i, m| *m = scale * delta[i]);
+        let contact = self.contact.as_deref_mut().expect("checked above");
+        longest * contact.limit(self.system, self.x, self.motion)
     }
 }
 

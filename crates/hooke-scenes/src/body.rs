@@ -1,5 +1,6 @@
-//! [`Body`]: what every builder produces — particles, springs, pins and
-//! the surface to draw — and its [`Placement`] in a system.
+//! [`Body`]: what every builder produces — particles, springs, pins, the
+//! surface to draw and how it collides — and its [`Placement`] in a
+//! system.
 
 use std::ops::Range;
 
@@ -15,6 +16,12 @@ use crate::spring::{BodySpring, Family};
 /// the body's own particles. Triangles are oriented counter-clockwise seen
 /// from outside (their normal `(b − a) × (c − a)` points out), for writing
 /// frames and rendering; segments are the polyline of a rope.
+///
+/// A body with triangles is a collision surface of the systems it goes
+/// into ([`Collision`]): with self-collision for a [`Cloth`](crate::Cloth)
+/// or a [`Shell`](crate::Shell), without for the volumetric
+/// [`Lattice`](crate::Lattice), [`Solid`](crate::Solid) and
+/// [`Layered`](crate::Layered) bodies, thickness 0; a rope has no surface.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
     masses: Vec<f64>,
@@ -23,6 +30,26 @@ pub struct Body {
     pins: Vec<usize>,
     triangles: Vec<[usize; 3]>,
     segments: Vec<[usize; 2]>,
+    collision: Collision,
+}
+
+/// How a body's surface takes part in contact between surfaces (the
+/// implicit step's barrier terms, see `hooke-implicit`): what
+/// [`Body::add_to`] gives [`SystemBuilder::surface`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Collision {
+    /// Whether the body's triangles are a collision surface, colliding
+    /// with every other surface: `true` for a body with triangles unless
+    /// turned off ([`Body::surface_collision`]), always `false` for a rope.
+    pub surface: bool,
+    /// Whether pairs of the surface's own points, edges and triangles
+    /// collide (self-collision): by default `true` for cloth and shells,
+    /// `false` for volumetric bodies, whose surface cannot fold onto
+    /// itself.
+    pub self_collision: bool,
+    /// The surface's thickness `ξ`, m (default 0): two surfaces are kept
+    /// `(ξ₁ + ξ₂)/2` apart, an obstacle `ξ/2`, besides the barrier's gap.
+    pub thickness: f64,
 }
 
 /// Where a body's particles went in a system: particles
@@ -67,13 +94,14 @@ impl Placement {
 }
 
 impl Body {
-    /// Assembles a body from parts whose indices the builder has checked.
+    /// Assembles a body from parts whose indices the builder has checked;
+    /// its triangles, if any, collide, with themselves if `self_collision`.
     pub(crate) fn from_parts(
         masses: Vec<f64>,
         positions: Vec<Vec3>,
         springs: Vec<BodySpring>,
         pins: Vec<usize>,
-        triangles: Vec<[usize; 3]>,
+        (triangles, self_collision): (Vec<[usize; 3]>, bool),
         segments: Vec<[usize; 2]>,
     ) -> Result<Self, SceneError> {
         let particles = masses.len();
@@ -86,6 +114,11 @@ impl Body {
         let mut pins = pins;
         pins.sort_unstable();
         pins.dedup();
+        let collision = Collision {
+            surface: !triangles.is_empty(),
+            self_collision,
+            thickness: 0.0,
+        };
         Ok(Self {
             masses,
             positions,
@@ -93,7 +126,75 @@ impl Body {
             pins,
             triangles,
             segments,
+            collision,
         })
+    }
+
+    /// The body with its surface colliding or not (see
+    /// [`Collision::surface`]); a body without triangles has no surface
+    /// whatever this says.
+    ///
+    /// ```
+    /// use hooke_scenes::Cloth;
+    /// let cloth = Cloth::grid(3, 3).stretch(1e3).build()?;
+    /// assert!(cloth.collision().surface);
+    /// let ghost = cloth.surface_collision(false);
+    /// assert_eq!(ghost.system([0.0; 3])?.surface_count(), 0);
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    #[must_use]
+    pub fn surface_collision(mut self, on: bool) -> Self {
+        self.collision.surface = on && !self.triangles.is_empty();
+        self
+    }
+
+    /// The body with its surface colliding with itself or not (see
+    /// [`Collision::self_collision`]).
+    ///
+    /// ```
+    /// use hooke_scenes::Cloth;
+    /// let cloth = Cloth::grid(3, 3).stretch(1e3).build()?;
+    /// assert!(cloth.collision().self_collision); // cloth folds onto itself
+    /// let flat = cloth.self_collision(false).system([0.0, -9.81, 0.0])?;
+    /// assert!(!flat.has_surface_contact()); // nothing else to collide with
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    #[must_use]
+    pub fn self_collision(mut self, on: bool) -> Self {
+        self.collision.self_collision = on;
+        self
+    }
+
+    /// The body with surface thickness `ξ` in m (see
+    /// [`Collision::thickness`]); the system builder rejects one that is
+    /// negative or not finite.
+    ///
+    /// ```
+    /// use hooke_scenes::Cloth;
+    /// let cloth = Cloth::grid(3, 3).stretch(1e3).build()?.thickness(1e-3);
+    /// assert_eq!(cloth.collision().thickness, 1e-3);
+    /// assert_eq!(cloth.system([0.0; 3])?.surface_thickness(0), 1e-3);
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    #[must_use]
+    pub fn thickness(mut self, thickness: f64) -> Self {
+        self.collision.thickness = thickness;
+        self
+    }
+
+    /// How the body's surface collides.
+    ///
+    /// ```
+    /// use hooke_scenes::{Lattice, Rope};
+    /// let cube = Lattice::cubes(2, 2, 2).edges(1e3).build()?;
+    /// assert!(cube.collision().surface && !cube.collision().self_collision);
+    /// let rope = Rope::between([0.0; 3], [1.0, 0.0, 0.0], 4).stretch(1e3).build()?;
+    /// assert!(!rope.collision().surface); // no triangles
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    #[must_use]
+    pub fn collision(&self) -> Collision {
+        self.collision
     }
 
     /// Number of particles.
@@ -158,7 +259,9 @@ impl Body {
     }
 
     /// Adds the body's particles, springs and pins to `builder`, after
-    /// whatever it holds already, and says where they went.
+    /// whatever it holds already, and its triangles as a collision surface
+    /// ([`SystemBuilder::surface`], with its [`Collision`] settings) unless
+    /// it has none or its surface collision is off; says where they went.
     ///
     /// ```
     /// use hooke_scenes::{Cloth, Rope};
@@ -168,7 +271,9 @@ impl Body {
     /// let c = cloth.add_to(&mut b);
     /// let r = rope.add_to(&mut b);
     /// assert_eq!((c.first, r.first, r.count), (0, 16, 6));
-    /// assert_eq!(b.build()?.springs().len(), cloth.springs().len() + rope.springs().len());
+    /// let system = b.build()?;
+    /// assert_eq!(system.springs().len(), cloth.springs().len() + rope.springs().len());
+    /// assert_eq!(system.surface_count(), 1); // the cloth's; a rope has none
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn add_to(&self, builder: &mut SystemBuilder) -> Placement {
@@ -190,6 +295,12 @@ impl Body {
         }
         for &p in &self.pins {
             builder.pin(at + p);
+        }
+        if self.collision.surface && !self.triangles.is_empty() {
+            builder
+                .surface(&placement.triangles(self))
+                .self_collision(self.collision.self_collision)
+                .thickness(self.collision.thickness);
         }
         placement
     }

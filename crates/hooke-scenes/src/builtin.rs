@@ -15,10 +15,10 @@ use crate::Scene;
 use crate::file::{ErrorKind, Meshes, SceneFileError, parse_with};
 
 /// Each scene: name, one-line description, and its file's text.
-const SCENES: [(&str, &str, &str); 10] = [
+const SCENES: [(&str, &str, &str); 12] = [
     (
         "stiff-cloth",
-        "the default: a stiff 40 × 40 cloth pinned at two corners falls onto a sphere (backward Euler, dt = 1/60 s)",
+        "the default: a free, stiff 40 × 40 cloth falls onto a sphere on a floor and drapes over it (backward Euler, dt = 1/60 s)",
         include_str!("../../../scenes/stiff-cloth.toml"),
     ),
     (
@@ -66,6 +66,16 @@ const SCENES: [(&str, &str, &str); 10] = [
         "a tube surface from an OBJ file hanging from its top ring, hit by a moving capsule",
         include_str!("../../../scenes/obj-tube.toml"),
     ),
+    (
+        "cloth-pile",
+        "a 30 × 30 cloth dropped edge-down onto a floor folds onto itself into a pile (self-collision)",
+        include_str!("../../../scenes/cloth-pile.toml"),
+    ),
+    (
+        "two-cloths",
+        "two 25 × 25 cloths, one turned against the other, fall onto a sphere, the upper onto the lower (surfaces colliding)",
+        include_str!("../../../scenes/two-cloths.toml"),
+    ),
 ];
 
 /// The meshes the built-in scenes use, by their path relative to the scene.
@@ -101,6 +111,8 @@ pub const NAMES: &[(&str, &str)] = &[
     (SCENES[7].0, SCENES[7].1),
     (SCENES[8].0, SCENES[8].1),
     (SCENES[9].0, SCENES[9].1),
+    (SCENES[10].0, SCENES[10].1),
+    (SCENES[11].0, SCENES[11].1),
 ];
 
 /// The built-in scene `name` (see [`NAMES`]); errors name it as

@@ -282,6 +282,13 @@ impl Cloth {
             .flat_map(|pin| pin.particles(nx, ny))
             .collect();
         let springs = springs.into_springs();
-        Body::from_parts(masses, positions, springs, pins, triangles, Vec::new())
+        Body::from_parts(
+            masses,
+            positions,
+            springs,
+            pins,
+            (triangles, true),
+            Vec::new(),
+        )
     }
 }

@@ -274,6 +274,13 @@ impl Lattice {
         };
         let triangles = mesh.boundary_faces(1.0);
         let springs = springs.into_springs();
-        Body::from_parts(masses, positions, springs, self.pins, triangles, Vec::new())
+        Body::from_parts(
+            masses,
+            positions,
+            springs,
+            self.pins,
+            (triangles, false),
+            Vec::new(),
+        )
     }
 }

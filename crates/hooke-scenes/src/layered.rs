@@ -193,6 +193,13 @@ impl Layered {
             .map(|&[a, b, c]| [n + a, n + c, n + b]);
         let triangles = mesh.triangles.iter().copied().chain(inner).collect();
         let springs = springs.into_springs();
-        Body::from_parts(masses, positions, springs, self.pins, triangles, Vec::new())
+        Body::from_parts(
+            masses,
+            positions,
+            springs,
+            self.pins,
+            (triangles, false),
+            Vec::new(),
+        )
     }
 }

@@ -78,6 +78,28 @@
 //!   its copy, and across to the copies of its neighbours. It gives a
 //!   surface mesh a volume-like stiffness without a tetrahedral mesh.
 //!
+//! # Collision
+//!
+//! A body with triangles is a collision surface in the systems it goes into
+//! ([`Body::add_to`] calls [`hooke_core::SystemBuilder::surface`]): its
+//! points, edges and triangles collide with those of every other surface,
+//! and with each other when it self-collides — by default cloth and shells
+//! do, the volumetric lattices, solids and layered bodies (whose surface
+//! cannot fold onto itself) do not. [`Body::self_collision`],
+//! [`Body::thickness`] and [`Body::surface_collision`] change that
+//! ([`Collision`]). Only the implicit methods' converged steps keep surfaces
+//! apart; the other integrators refuse a system whose surfaces collide.
+//!
+//! ```
+//! use hooke_scenes::Cloth;
+//! let cloth = Cloth::grid(10, 10).stretch(1e3).build()?;
+//! assert!(cloth.system([0.0, -9.81, 0.0])?.has_surface_contact());
+//! // For an explicit integrator: the cloth may then pass through itself.
+//! let loose = cloth.self_collision(false).system([0.0, -9.81, 0.0])?;
+//! assert!(!loose.has_surface_contact());
+//! # Ok::<(), hooke_scenes::SceneError>(())
+//! ```
+//!
 //! # Mesh files
 //!
 //! - [`obj`]: Wavefront OBJ triangle surfaces, read with `tobj`.
@@ -123,7 +145,7 @@ mod spring;
 mod tet_split;
 pub mod tetgen;
 
-pub use body::{Body, Placement};
+pub use body::{Body, Collision, Placement};
 pub use cloth::Cloth;
 pub use error::{Element, SceneError};
 pub use grid::{Corner, Edge, Plane};

@@ -128,6 +128,24 @@ impl Method {
         }
     }
 
+    /// Whether the method keeps colliding surfaces apart: the implicit
+    /// methods, whose steps minimise an incremental potential with barrier
+    /// terms. The others (explicit, Dormand–Prince, fast mass-spring)
+    /// refuse a system with surface contact
+    /// ([`hooke_core::System::has_surface_contact`]) with
+    /// [`hooke_core::StepError::SurfaceContactUnsupported`].
+    ///
+    /// ```
+    /// use hooke_scenes::Method;
+    /// assert!(Method::Bdf2.resolves_surface_contact());
+    /// assert!(!Method::FastMassSpring.resolves_surface_contact());
+    /// assert!(!Method::from_name("rk4").unwrap().resolves_surface_contact());
+    /// ```
+    #[must_use]
+    pub fn resolves_surface_contact(self) -> bool {
+        matches!(self, Self::BackwardEuler | Self::Bdf2)
+    }
+
     /// The method's stability on the undamped oscillator (the stability
     /// interval of its amplification factor on the imaginary axis).
     /// Dormand–Prince adapts its step to its tolerance, so it is

@@ -194,6 +194,13 @@ impl Rope {
         for spring in &mut springs {
             spring.rest_length *= fraction;
         }
-        Body::from_parts(masses, positions, springs, pins, Vec::new(), segments)
+        Body::from_parts(
+            masses,
+            positions,
+            springs,
+            pins,
+            (Vec::new(), false),
+            segments,
+        )
     }
 }

@@ -128,7 +128,7 @@ impl Shell {
             mesh.vertices,
             springs,
             self.pins,
-            mesh.triangles,
+            (mesh.triangles, true),
             Vec::new(),
         )
     }

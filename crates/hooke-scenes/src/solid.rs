@@ -109,7 +109,7 @@ impl Solid {
             mesh.vertices,
             springs,
             self.pins,
-            triangles,
+            (triangles, false),
             Vec::new(),
         )
     }

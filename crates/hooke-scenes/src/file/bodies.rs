@@ -8,7 +8,7 @@ use toml::Spanned;
 use super::MAX_PARTICLES;
 use super::error::{SceneFileError, Source};
 use super::schema::{MovingPin, PinRef, SpringsTable};
-use super::values::{key, mass, positive, springs};
+use super::values::{key, mass, non_negative, positive, springs};
 use crate::{Body, Cloth, Lattice, Layered, Mass, Rope, SceneError, Shell, Solid, Springs};
 
 /// Where a table is: its dotted key and its span in the file.
@@ -32,17 +32,28 @@ pub(crate) struct Shared {
     pub(crate) pins: Vec<Spanned<PinRef>>,
     /// `moving_pins`.
     pub(crate) moving_pins: Vec<Spanned<MovingPin>>,
+    /// `self_collision`.
+    pub(crate) self_collision: Option<Spanned<bool>>,
+    /// The surface's thickness, m, and its key: `thickness`, or
+    /// `contact_thickness` where `thickness` means something else.
+    pub(crate) thickness: (Option<Spanned<f64>>, &'static str),
 }
 
-/// The [`Shared`] keys of a body table `t`, moved out of it.
+/// The [`Shared`] keys of a body table `t`, moved out of it; the surface
+/// thickness is `t.thickness` unless another field is named.
 macro_rules! shared {
     ($t:expr) => {
+        $crate::file::bodies::shared!($t, thickness)
+    };
+    ($t:expr, $thickness:ident) => {
         $crate::file::bodies::Shared {
             name: $t.name,
             mass: $t.mass,
             density: $t.density,
             pins: $t.pins,
             moving_pins: $t.moving_pins,
+            self_collision: $t.self_collision,
+            thickness: ($t.$thickness, stringify!($thickness)),
         }
     };
 }
@@ -73,7 +84,8 @@ body_builders!(Cloth, Rope, Lattice, Solid, Shell, Layered);
 
 /// Ends reading the body table at `at`: gives `builder` the table's `mass`
 /// or `density` (in `density_unit`), builds the body (an error pointing at
-/// `built_at`) and keeps its name and pins.
+/// `built_at`), gives it the table's collision settings and keeps its name
+/// and pins.
 pub(crate) fn finish(
     src: &Source<'_>,
     at: &At,
@@ -96,6 +108,7 @@ pub(crate) fn finish(
     let body = builder
         .build_body()
         .map_err(|e| src.scene(e, built_at.span.clone(), &built_at.key))?;
+    let body = collision(src, at, body, &shared)?;
     Ok(Built {
         body,
         names,
@@ -105,6 +118,45 @@ pub(crate) fn finish(
             moving_pins: shared.moving_pins,
         },
     })
+}
+
+/// `body` with the table's `self_collision` and surface thickness; either
+/// key on a body without triangles (a rope) is an error.
+fn collision(
+    src: &Source<'_>,
+    at: &At,
+    body: Body,
+    shared: &Shared,
+) -> Result<Body, SceneFileError> {
+    let (thickness, thickness_key) = (&shared.thickness.0, shared.thickness.1);
+    if body.triangles().is_empty() {
+        let given = [
+            shared
+                .self_collision
+                .as_ref()
+                .map(|s| ("self_collision", s.span())),
+            thickness.as_ref().map(|t| (thickness_key, t.span())),
+        ];
+        if let Some((name, span)) = given.into_iter().flatten().next() {
+            return Err(src.invalid(
+                span,
+                key(&at.key, name),
+                format!("`{name}` on a body without triangles"),
+                format!(
+                    "no `{name}`: only bodies with surface triangles collide with surfaces (a rope has none)"
+                ),
+            ));
+        }
+        return Ok(body);
+    }
+    let mut body = body;
+    if let Some(on) = &shared.self_collision {
+        body = body.self_collision(*on.get_ref());
+    }
+    if let Some(t) = thickness {
+        body = body.thickness(non_negative(src, t, &key(&at.key, thickness_key), "m")?);
+    }
+    Ok(body)
 }
 
 /// What every body table has besides its geometry and material.

@@ -31,6 +31,8 @@ pub(crate) struct ClothTable {
     pins: Vec<Spanned<PinRef>>,
     #[serde(default)]
     moving_pins: Vec<Spanned<MovingPin>>,
+    self_collision: Option<Spanned<bool>>,
+    thickness: Option<Spanned<f64>>,
 }
 
 /// Builds a cloth.

@@ -29,6 +29,8 @@ pub(crate) struct LatticeTable {
     pins: Vec<Spanned<PinRef>>,
     #[serde(default)]
     moving_pins: Vec<Spanned<MovingPin>>,
+    self_collision: Option<Spanned<bool>>,
+    thickness: Option<Spanned<f64>>,
 }
 
 /// Builds a box lattice.

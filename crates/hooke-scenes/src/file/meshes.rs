@@ -94,6 +94,8 @@ pub(crate) struct TetMeshTable {
     pins: Vec<Spanned<PinRef>>,
     #[serde(default)]
     moving_pins: Vec<Spanned<MovingPin>>,
+    self_collision: Option<Spanned<bool>>,
+    thickness: Option<Spanned<f64>>,
 }
 
 /// Builds a solid from TetGen's `<mesh>.node` and `<mesh>.ele` (a `mesh`
@@ -152,6 +154,8 @@ pub(crate) struct ObjTable {
     pins: Vec<Spanned<PinRef>>,
     #[serde(default)]
     moving_pins: Vec<Spanned<MovingPin>>,
+    self_collision: Option<Spanned<bool>>,
+    thickness: Option<Spanned<f64>>,
 }
 
 /// Builds a shell from an OBJ surface.
@@ -209,6 +213,8 @@ pub(crate) struct LayeredTable {
     pins: Vec<Spanned<PinRef>>,
     #[serde(default)]
     moving_pins: Vec<Spanned<MovingPin>>,
+    self_collision: Option<Spanned<bool>>,
+    contact_thickness: Option<Spanned<f64>>,
 }
 
 /// Builds a layered body from an OBJ surface.
@@ -245,7 +251,7 @@ pub(crate) fn layered(
         at,
         &mesh_at,
         body,
-        shared!(t),
+        shared!(t, contact_thickness),
         ("kg/m³", PinNames::None),
     )
 }

@@ -4,8 +4,9 @@
 //! A scene file states how long to run and at what step (`[simulation]`),
 //! the integrator (`[integrator]`), gravity and air damping (`[world]`), any
 //! number of bodies (`[[bodies]]`, each with a `type`: `cloth`, `rope`,
-//! `lattice`, `tet-mesh`, `layered` or `obj`), their pins and scripted pin
-//! motion, and obstacles (`[[obstacles]]`, each with a `shape`). Every key,
+//! `lattice`, `tet-mesh`, `layered` or `obj`), their pins, scripted pin
+//! motion and collision settings, and obstacles (`[[obstacles]]`, each with
+//! a `shape`). Every key,
 //! its unit, default and constraints are documented in
 //! `docs/scene-format.md`; the shipped scenes in `scenes/` are complete
 //! examples.
@@ -63,7 +64,7 @@ use error::Source;
 pub use error::{ErrorKind, SceneFileError};
 pub(crate) use meshes::Meshes;
 use schema::{Header, World};
-use values::{non_negative, vector};
+use values::{non_negative, positive, vector};
 
 /// The most particles a scene file may declare, over all its bodies.
 /// Larger systems can still be built in code.
@@ -115,10 +116,12 @@ pub(crate) fn parse_with(
     let timing = integrator::timing(&src, header.simulation.as_ref())?;
     let integrator = integrator::integrator(&src, header.integrator.as_ref())?;
     let mut builder = SystemBuilder::new();
-    world(&src, header.world.as_ref(), &mut builder)?;
+    let contact_distance = world(&src, header.world.as_ref(), &mut builder)?;
 
     let mut scene_bodies = Vec::new();
     let mut placed = Vec::new();
+    // The body of each collision surface, in the order they were added.
+    let mut surfaces = Vec::new();
     let body_values = tables::tables(&src, body_values, "bodies")?;
     if body_values.is_empty() {
         return Err(src.error(
@@ -144,6 +147,9 @@ pub(crate) fn parse_with(
             ));
         }
         pins::add_pins(&src, &built, placement, &mut builder, &at)?;
+        if built.body.collision().surface {
+            surfaces.push(i);
+        }
         scene_bodies.push(SceneBody {
             name: built.common.name.clone().unwrap_or_else(|| kind.clone()),
             placement,
@@ -173,9 +179,15 @@ pub(crate) fn parse_with(
         builder.obstacle(tables::obstacle(&src, value, &at)?);
         obstacle_places.push(at);
     }
-    let system = builder
-        .build()
-        .map_err(|e| build_error(&src, e, &placed, &obstacle_places))?;
+    let system = builder.build().map_err(|e| {
+        let places = Places {
+            bodies: &placed,
+            surfaces: &surfaces,
+            obstacles: &obstacle_places,
+            contact_distance: contact_distance.as_ref(),
+        };
+        build_error(&src, e, &places)
+    })?;
     let name = header.name.unwrap_or_else(|| {
         file.file_stem()
             .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned())
@@ -196,13 +208,14 @@ fn builder_springs(placed: &[Placed]) -> usize {
     placed.last().map_or(0, |(_, _, springs)| springs.end)
 }
 
-/// `[world]`: gravity (default `[0, -9.81, 0]` m/s²) and air damping
-/// (default none).
+/// `[world]`: gravity (default `[0, -9.81, 0]` m/s²), air damping
+/// (default none) and the contact distance (default the system builder's);
+/// returns where the contact distance was given.
 fn world(
     src: &Source<'_>,
     world: Option<&World>,
     builder: &mut SystemBuilder,
-) -> Result<(), SceneFileError> {
+) -> Result<Option<At>, SceneFileError> {
     let gravity = match world.and_then(|w| w.gravity.as_ref()) {
         Some(g) => vector(src, g, "world.gravity")?,
         None => hooke_core::Vec3::new(0.0, -9.81, 0.0),
@@ -216,16 +229,33 @@ fn world(
             builder.air_damping(gamma);
         }
     }
-    Ok(())
+    let Some(d) = world.and_then(|w| w.contact_distance.as_ref()) else {
+        return Ok(None);
+    };
+    let key = "world.contact_distance";
+    builder.contact_distance(positive(src, d, key, "m")?);
+    Ok(Some(At {
+        key: key.to_owned(),
+        span: d.span(),
+    }))
 }
 
-/// A [`BuildError`] pointed at the body or obstacle it came from.
-fn build_error(
-    src: &Source<'_>,
-    error: BuildError,
-    placed: &[Placed],
-    obstacles: &[At],
-) -> SceneFileError {
+/// Where the parts of a system came from in the file, for its build
+/// errors.
+struct Places<'a> {
+    /// The bodies.
+    bodies: &'a [Placed],
+    /// The body (an index into `bodies`) of each collision surface.
+    surfaces: &'a [usize],
+    /// The obstacles.
+    obstacles: &'a [At],
+    /// `world.contact_distance`, if given.
+    contact_distance: Option<&'a At>,
+}
+
+/// A [`BuildError`] pointed at the body, obstacle or key it came from.
+fn build_error(src: &Source<'_>, error: BuildError, places: &Places<'_>) -> SceneFileError {
+    let placed = places.bodies;
     let by_particle = |p: usize| {
         placed
             .iter()
@@ -247,7 +277,13 @@ fn build_error(
         | BuildError::SelfSpring { spring, .. }
         | BuildError::DuplicateSpring { spring, .. }
         | BuildError::InvalidSpringParameter { spring, .. } => by_spring(*spring),
-        BuildError::InvalidObstacle { obstacle, .. } => obstacles.get(*obstacle),
+        BuildError::InvalidObstacle { obstacle, .. } => places.obstacles.get(*obstacle),
+        BuildError::InvalidSurface { surface, .. } => places
+            .surfaces
+            .get(*surface)
+            .and_then(|&body| placed.get(body))
+            .map(|(at, _, _)| at),
+        BuildError::InvalidContactDistance { .. } => places.contact_distance,
         BuildError::NonFiniteGravity { .. } | BuildError::InvalidAirDamping { .. } => None,
     };
     match at {

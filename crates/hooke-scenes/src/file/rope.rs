@@ -28,6 +28,8 @@ pub(crate) struct RopeTable {
     pins: Vec<Spanned<PinRef>>,
     #[serde(default)]
     moving_pins: Vec<Spanned<MovingPin>>,
+    self_collision: Option<Spanned<bool>>,
+    thickness: Option<Spanned<f64>>,
 }
 
 /// Builds a rope.

@@ -59,6 +59,7 @@ pub(crate) struct IntegratorTable {
 pub(crate) struct World {
     pub(crate) gravity: Option<Vector>,
     pub(crate) air_damping: Option<Spanned<f64>>,
+    pub(crate) contact_distance: Option<Spanned<f64>>,
 }
 
 /// A spring family: `{ stiffness = k, damping = c }` or

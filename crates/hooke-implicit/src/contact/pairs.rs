@@ -1,0 +1,272 @@
+//! Contact between surface primitives as terms of the incremental
+//! potential: point–triangle and edge–edge pairs of the system's collision
+//! surfaces, within a body (self-collision) and between bodies.
+//!
+//! A pair of the 12 coordinates `q` (its four particles) at distance `d(q)`
+//! has the gap `g = d − ξ`, with `ξ` the mean of its two surfaces'
+//! thicknesses, and the term `κ b(g)` — for two edges `κ m(q) b(g)`, with
+//! the mollifier `m` that fades the term out as the edges turn parallel,
+//! where the edge–edge distance stops being smooth (Li et al. 2020, §4.3).
+//! Its gradient and Hessian in `q` come from `hooke_core::collision`, the
+//! Hessian projected onto its positive part; the Hessian's 3x3 blocks join
+//! the step's matrix on the four particles' diagonals and between them.
+//! The broad phase finds the pairs whose boxes come within reach; the
+//! line search is bounded by additive continuous collision detection on
+//! every pair whose boxes, swept over the motion, overlap.
+
+use hooke_core::collision::barrier::barrier;
+use hooke_core::collision::barrier::{mollified_pair_barrier, pair_barrier};
+use hooke_core::collision::broad::{BroadPhase, Candidates};
+use hooke_core::collision::ccd::{edge_edge_ccd, point_triangle_ccd};
+use hooke_core::collision::distance::{
+    Derivatives, edge_edge_closest, edge_edge_mollifier, edge_edge_squared, mollifier_threshold,
+    point_triangle_closest, point_triangle_squared,
+};
+use hooke_core::{Mat3, System, Vec3};
+
+use super::friction::{Lagged, symmetric};
+use crate::matrix::BlockMatrix;
+
+/// The pairs of a system's surfaces, with the broad phase's buffers.
+#[derive(Debug, Default)]
+pub(crate) struct Pairs {
+    broad: BroadPhase,
+    /// The pairs of the last search within reach.
+    near: Candidates,
+    /// The pairs whose boxes swept over the last motion overlap.
+    swept: Candidates,
+    /// The largest thickness of a pair.
+    thickest: f64,
+    /// Scratch for the end of a motion.
+    end: Vec<Vec3>,
+}
+
+/// One pair's particles, its thickness, and whether it is an edge–edge
+/// pair.
+#[derive(Debug, Clone, Copy)]
+struct Pair {
+    particles: [usize; 4],
+    thickness: f64,
+    /// The mean of the two surfaces' friction coefficients.
+    friction: f64,
+    edges: bool,
+}
+
+impl Pair {
+    fn positions(&self, x: &[Vec3]) -> [Vec3; 4] {
+        self.particles.map(|p| x[p])
+    }
+}
+
+impl Pairs {
+    /// Sets up the pairs of `system`.
+    pub(crate) fn begin(&mut self, system: &System) {
+        self.thickest = (0..system.surface_count())
+            .map(|g| system.surface_thickness(g))
+            .fold(0.0, f64::max);
+    }
+
+    /// The pairs among `candidates`, with their particles and thickness.
+    fn pairs<'a>(
+        system: &'a System,
+        candidates: &'a Candidates,
+    ) -> impl Iterator<Item = Pair> + 'a {
+        let mesh = system.surfaces();
+        let thickness =
+            |g: usize, h: usize| 0.5 * (system.surface_thickness(g) + system.surface_thickness(h));
+        let friction =
+            |g: usize, h: usize| 0.5 * (system.surface_friction(g) + system.surface_friction(h));
+        let point_triangle = candidates.point_triangle.iter().map(move |&(v, t)| {
+            let (v, t) = (v as usize, t as usize);
+            let [a, b, c] = mesh.triangles()[t];
+            let (g, h) = (mesh.vertex_group(v), mesh.triangle_group(t));
+            Pair {
+                particles: [mesh.vertices()[v], a, b, c],
+                thickness: thickness(g, h),
+                friction: friction(g, h),
+                edges: false,
+            }
+        });
+        let edge_edge = candidates.edge_edge.iter().map(move |&(e, f)| {
+            let (e, f) = (e as usize, f as usize);
+            let ([a0, a1], [b0, b1]) = (mesh.edges()[e], mesh.edges()[f]);
+            let (g, h) = (mesh.edge_group(e), mesh.edge_group(f));
+            Pair {
+                particles: [a0, a1, b0, b1],
+                thickness: thickness(g, h),
+                friction: friction(g, h),
+                edges: true,
+            }
+        });
+        point_triangle.chain(edge_edge)
+    }
+
+    /// Finds the pairs within the contact distance `d̂` (plus their
+    /// thickness) at `x`.
+    pub(crate) fn search(&mut self, system: &System, x: &[Vec3], activation: f64) {
+        self.broad.proximity(
+            system.surfaces(),
+            x,
+            activation + self.thickest,
+            &mut self.near,
+        );
+    }
+
+    /// The barrier term of a pair at `x`, with its derivatives in the
+    /// pair's 12 coordinates; `None` beyond the contact distance.
+    fn term(system: &System, pair: &Pair, x: &[Vec3], activation: f64) -> Option<Derivatives> {
+        let [p0, p1, p2, p3] = pair.positions(x);
+        if pair.edges {
+            let rest = system.initial_positions();
+            let [r0, r1, r2, r3] = pair.particles.map(|p| rest[p]);
+            let threshold = mollifier_threshold(r0, r1, r2, r3);
+            let squared = edge_edge_squared(p0, p1, p2, p3);
+            let mollifier = edge_edge_mollifier(p0, p1, p2, p3, threshold);
+            mollified_pair_barrier(&squared, &mollifier, pair.thickness, activation)
+        } else {
+            let squared = point_triangle_squared(p0, p1, p2, p3);
+            pair_barrier(&squared, pair.thickness, activation)
+        }
+    }
+
+    /// `Σ b` over the pairs of the last search at `x` (`κ` not applied);
+    /// infinite if a gap is not positive.
+    pub(crate) fn energy(&self, system: &System, x: &[Vec3], activation: f64) -> f64 {
+        Self::pairs(system, &self.near)
+            .filter_map(|pair| Self::term(system, &pair, x, activation))
+            .map(|t| t.value)
+            .sum()
+    }
+
+    /// Adds `κ Σ b` at `x` to a Newton system in the velocities
+    /// (`x = x̃ + βh v`): `b −= βh κ ∇b`, `A += β²h² κ ∇²b`; returns the
+    /// number of pairs within the contact distance.
+    pub(crate) fn add(
+        &self,
+        system: &System,
+        x: &[Vec3],
+        (kappa, beta_h, activation): (f64, f64, f64),
+        b: &mut [Vec3],
+        a: &mut BlockMatrix,
+    ) -> usize {
+        let (kb, kbb) = (kappa * beta_h, kappa * beta_h * beta_h);
+        let mut count = 0;
+        for pair in Self::pairs(system, &self.near) {
+            let Some(term) = Self::term(system, &pair, x, activation) else {
+                continue;
+            };
+            count += 1;
+            for (k, &p) in pair.particles.iter().enumerate() {
+                let g = term.gradient.fixed_rows::<3>(3 * k).into_owned();
+                b[p] -= kb * g;
+                let block: Mat3 = term.hessian.fixed_view::<3, 3>(3 * k, 3 * k).into_owned();
+                a.add_contact_row(p, symmetric(kbb * block));
+                for (l, &q) in pair.particles.iter().enumerate().skip(k + 1) {
+                    let block: Mat3 = term.hessian.fixed_view::<3, 3>(3 * k, 3 * l).into_owned();
+                    a.add_contact_pair(p, q, kbb * block);
+                }
+            }
+        }
+        count
+    }
+
+    /// The lagged friction of the pairs of the last search within the
+    /// contact distance at `x` (the step's start), with barrier stiffness
+    /// `kappa`, into `out`: the normal force `λ = κ m |b'(g)|` (`m` the
+    /// edge–edge mollifier, 1 otherwise) along the line between the closest
+    /// points, whose weights make the relative velocity.
+    pub(crate) fn lag_friction(
+        &self,
+        system: &System,
+        x: &[Vec3],
+        (kappa, activation): (f64, f64),
+        out: &mut Vec<Lagged>,
+    ) {
+        for pair in Self::pairs(system, &self.near) {
+            if pair.friction <= 0.0 {
+                continue;
+            }
+            let [p0, p1, p2, p3] = pair.positions(x);
+            let (closest, mollifier) = if pair.edges {
+                let rest = system.initial_positions();
+                let [r0, r1, r2, r3] = pair.particles.map(|p| rest[p]);
+                let threshold = mollifier_threshold(r0, r1, r2, r3);
+                (
+                    edge_edge_closest(p0, p1, p2, p3),
+                    edge_edge_mollifier(p0, p1, p2, p3, threshold).value,
+                )
+            } else {
+                (point_triangle_closest(p0, p1, p2, p3), 1.0)
+            };
+            let distance = closest.squared.sqrt();
+            let gap = distance - pair.thickness;
+            if gap <= 0.0 || gap >= activation || distance == 0.0 {
+                continue;
+            }
+            let between: Vec3 = (0..4)
+                .map(|k| closest.weights[k] * x[pair.particles[k]])
+                .sum();
+            let force = kappa * mollifier * barrier(gap, activation).1.abs();
+            out.push(Lagged::new(
+                &pair.particles,
+                &closest.weights,
+                between / distance,
+                Vec3::zeros(),
+                pair.friction * force,
+            ));
+        }
+    }
+
+    /// The pairs within the contact distance at `x` and the smallest gap
+    /// among them.
+    pub(crate) fn closest(&self, system: &System, x: &[Vec3], activation: f64) -> (usize, f64) {
+        let (mut count, mut smallest) = (0, f64::INFINITY);
+        for pair in Self::pairs(system, &self.near) {
+            let [p0, p1, p2, p3] = pair.positions(x);
+            let squared = if pair.edges {
+                edge_edge_squared(p0, p1, p2, p3).value
+            } else {
+                point_triangle_squared(p0, p1, p2, p3).value
+            };
+            let gap = squared.sqrt() - pair.thickness;
+            if gap < activation {
+                count += 1;
+                smallest = smallest.min(gap);
+            }
+        }
+        (count, smallest)
+    }
+
+    /// The largest `τ ∈ [0, 1]` such that the motion from `x` to `x + τ dx`
+    /// keeps every pair at least `keep` of its gap (additive CCD on the
+    /// pairs whose boxes, swept over the motion and inflated by the contact
+    /// distance `d̂` and the thickness, overlap).
+    pub(crate) fn limit(
+        &mut self,
+        system: &System,
+        x: &[Vec3],
+        dx: &[Vec3],
+        (keep, activation): (f64, f64),
+    ) -> f64 {
+        self.end.clear();
+        self.end.extend(x.iter().zip(dx).map(|(x, d)| x + d));
+        self.broad.swept(
+            system.surfaces(),
+            x,
+            &self.end,
+            activation + self.thickest,
+            &mut self.swept,
+        );
+        let mut tau: f64 = 1.0;
+        for pair in Self::pairs(system, &self.swept) {
+            let (q, d) = (pair.positions(x), pair.particles.map(|p| dx[p]));
+            let t = if pair.edges {
+                edge_edge_ccd(q, d, pair.thickness, keep)
+            } else {
+                point_triangle_ccd(q, d, pair.thickness, keep)
+            };
+            tau = tau.min(t);
+        }
+        tau
+    }
+}
