@@ -6,6 +6,7 @@ use std::time::Instant;
 use hooke_core::{Integrator, State, StepError, StepReport, System, Vec3, check_step};
 
 use crate::attempt::Outcome;
+use crate::contact::Contact;
 use crate::error_control::step_factor;
 use crate::implicit::{Implicit, Scheme};
 use crate::solver::topology;
@@ -18,6 +19,9 @@ impl Integrator for Implicit {
         dt: f64,
     ) -> Result<StepReport, StepError> {
         check_step(system, state, dt)?;
+        if Contact::present(system) {
+            self.contact.push_out(system, state);
+        }
         let clock = Instant::now();
         let n = state.len();
         let w = &mut self.work;

@@ -143,13 +143,16 @@ struct Found {
     triangles: Vec<(u32, u32)>,
     /// The boxes of the cell being paired.
     items: Vec<Item>,
+    /// The overlapping boxes of one scan.
+    hits: Vec<u32>,
 }
 
-/// A box in a cell.
-#[derive(Debug, Clone, Copy)]
+/// A box in a cell, with the cell of its lower corner.
+#[derive(Debug, Clone, Copy, Default)]
 struct Item {
     lo: [f64; 3],
     hi: [f64; 3],
+    cell: [i32; 3],
     id: u32,
 }
 
@@ -323,7 +326,15 @@ impl BroadPhase {
             for_each(parallel, &mut self.found[..chunks], |c, found| {
                 scene.pair_chunk(grid, own, finer, bounds[c]..bounds[c + 1], found);
             });
-            if std::env::var("PH").is_ok() { eprintln!("boxes {:?} +levels {:?} entries {:?} pair {:?}", t1, t2 - t0, t3, t4.elapsed()); }
+            if std::env::var("PH").is_ok() {
+                eprintln!(
+                    "boxes {:?} +levels {:?} entries {:?} pair {:?}",
+                    t1,
+                    t2 - t0,
+                    t3,
+                    t4.elapsed()
+                );
+            }
         }
         if wild {
             for (a, _) in self.levels.iter().enumerate().filter(|&(_, &l)| l == WILD) {
@@ -410,8 +421,9 @@ impl BroadPhase {
 struct Grid {
     origin: Vec3,
     inverse: f64,
-    /// The number of cells along each axis.
-    cells: [i64; 3],
+    /// The number of cells along each axis (at most `2³¹ − 1`: beyond,
+    /// cells merge, as they do under a hash).
+    cells: [i32; 3],
     /// The bits of the `x` and `y` cell coordinates in an exact key; `None`
     /// when the key is a hash.
     exact: Option<[u32; 2]>,
@@ -422,7 +434,7 @@ struct Grid {
 impl Grid {
     fn new(lo: Vec3, hi: Vec3, side: f64, id_bits: u32) -> Self {
         let inverse = 1.0 / side;
-        let cells = ((hi - lo) * inverse).map(|s| (s.floor() as i64).saturating_add(1));
+        let cells = ((hi - lo) * inverse).map(|s| (s as i32).saturating_add(1));
         let [bx, by, bz] = cells.map(|c| bits(c as u64)).into();
         Self {
             origin: lo,
@@ -437,15 +449,15 @@ impl Grid {
     /// overlapping boxes keep overlapping cell ranges. (`p ≥ o` but for
     /// rounding, so truncation is the floor, and cheaper.)
     #[inline]
-    fn cell(&self, p: &[f64; 3]) -> [i64; 3] {
+    fn cell(&self, p: &Vec3) -> [i32; 3] {
         std::array::from_fn(|k| {
-            (((p[k] - self.origin[k]) * self.inverse) as i64).clamp(0, self.cells[k] - 1)
+            (((p[k] - self.origin[k]) * self.inverse) as i32).clamp(0, self.cells[k] - 1)
         })
     }
 
     /// The key of cell `c`, in the low `64 − id_bits` bits.
     #[inline]
-    fn key(&self, [i, j, k]: [i64; 3]) -> u64 {
+    fn key(&self, [i, j, k]: [i32; 3]) -> u64 {
         match self.exact {
             Some([bx, by]) => i as u64 | (j as u64) << bx | (k as u64) << (bx + by),
             None => {
@@ -457,9 +469,16 @@ impl Grid {
         }
     }
 
+    /// The cell of an exact key.
+    fn decode(&self, key: u64) -> Option<[i32; 3]> {
+        let [bx, by] = self.exact?;
+        let field = |shift: u32, bits: u32| ((key >> shift) & ((1 << bits) - 1)) as i32;
+        Some([field(0, bx), field(bx, by), (key >> (bx + by)) as i32])
+    }
+
     /// The cells a box covers, saturating.
     fn count(&self, b: &[Vec3; 2]) -> u64 {
-        let (lo, hi) = (self.cell(&b[0].into()), self.cell(&b[1].into()));
+        let (lo, hi) = (self.cell(&b[0]), self.cell(&b[1]));
         (0..3).fold(1u64, |n, k| n.saturating_mul((hi[k] - lo[k] + 1) as u64))
     }
 }
@@ -648,69 +667,127 @@ impl Scene<'_> {
 
     /// Pairs one cell: vertices with triangles and edges with edges (or
     /// triangles with triangles), own boxes with own and with finer ones.
-    /// The cell's boxes are first copied side by side.
+    ///
+    /// A pair belongs to the cell `max(cellₐ, cell_b)` of its lower
+    /// corners, so only pairs in which, along each axis, one of the boxes
+    /// starts in this cell are tested. The cell's boxes are copied side by
+    /// side, each kind sorted by the axes along which it starts here (a
+    /// mask `m`), and groups `m`, `m'` are tested only if `m | m' = 0b111`.
+    /// (With hashed keys the cell is unknown: all are tested, and the
+    /// owner cell checked per pair.)
     fn pair_cell(&self, grid: &Grid, cell: u64, own: &[u64], finer: &[u64], found: &mut Found) {
         let mask = (1u64 << grid.id_bits) - 1;
         let Layout {
-            vertices, edges, ..
+            vertices,
+            edges,
+            triangles_only,
+            ..
         } = self.layout;
-        let bounds = [vertices, vertices + edges];
-        let ([ov, oe, ot], [fv, fe, ft]) = (
-            split_kinds(own, mask, bounds),
-            split_kinds(finer, mask, bounds),
+        let here = grid.decode(cell);
+        let corner = |lo: &Vec3| {
+            let c = grid.cell(lo);
+            let starts = here.map_or(7, |h| {
+                (0..3).fold(0, |m, k| m | usize::from(c[k] == h[k]) << k)
+            });
+            (starts, c)
+        };
+        let (mut items, mut hits) = (
+            std::mem::take(&mut found.items),
+            std::mem::take(&mut found.hits),
         );
-        let mut items = std::mem::take(&mut found.items);
         items.clear();
-        items.extend(own.iter().chain(finer).map(|&e| {
-            let id = (e & mask) as usize;
-            let [lo, hi] = self.boxes[id];
-            Item {
-                lo: lo.into(),
-                hi: hi.into(),
-                id: id as u32,
+        let mut groups = [[0; 9]; 6];
+        let blocks = [own, finer].map(|b| (b, split_kinds(b, mask, [vertices, vertices + edges])));
+        let ranges = blocks
+            .iter()
+            .flat_map(|(b, kinds)| kinds.clone().map(|r| &b[r]));
+        for (group, block) in groups.iter_mut().zip(ranges) {
+            let mut counts = [0; 8];
+            for &e in block {
+                counts[corner(&self.boxes[(e & mask) as usize][0]).0] += 1;
             }
-        }));
-        let (own, finer) = items.split_at(own.len());
-        if self.layout.triangles_only {
-            let ot = &own[ot];
-            for (n, a) in ot.iter().enumerate() {
-                self.scan(grid, cell, a, &ot[n + 1..], found);
-                self.scan(grid, cell, a, &finer[ft.clone()], found);
+            group[0] = items.len();
+            for m in 0..8 {
+                group[m + 1] = group[m] + counts[m];
             }
-        } else {
-            let (ov, oe, ot) = (&own[ov], &own[oe], &own[ot]);
-            for a in ov {
-                self.scan(grid, cell, a, ot, found);
-                self.scan(grid, cell, a, &finer[ft.clone()], found);
-            }
-            for a in ot {
-                self.scan(grid, cell, a, &finer[fv.clone()], found);
-            }
-            for (n, a) in oe.iter().enumerate() {
-                self.scan(grid, cell, a, &oe[n + 1..], found);
-                self.scan(grid, cell, a, &finer[fe.clone()], found);
+            items.resize(group[8], Item::default());
+            let mut next = *group;
+            for &e in block {
+                let id = (e & mask) as usize;
+                let [lo, hi] = self.boxes[id];
+                let (m, cell) = corner(&lo);
+                items[next[m]] = Item {
+                    lo: lo.into(),
+                    hi: hi.into(),
+                    cell,
+                    id: id as u32,
+                };
+                next[m] += 1;
             }
         }
-        found.items = items;
+        let [ov, oe, ot, fv, fe, ft] = groups;
+        let mut pair = |x: &[usize; 9], y: &[usize; 9], same: bool| {
+            for mx in 0..8 {
+                for my in if same { mx..8 } else { 0..8 } {
+                    if mx | my != 7 {
+                        continue;
+                    }
+                    let ys = &items[y[my]..y[my + 1]];
+                    for (n, a) in items[x[mx]..x[mx + 1]].iter().enumerate() {
+                        let others = if same && mx == my { &ys[n + 1..] } else { ys };
+                        self.scan(grid, cell, here.is_none(), a, others, &mut hits, found);
+                    }
+                }
+            }
+        };
+        if triangles_only {
+            pair(&ot, &ot, true);
+            pair(&ot, &ft, false);
+        } else {
+            pair(&ov, &ot, false);
+            pair(&ov, &ft, false);
+            pair(&ot, &fv, false);
+            pair(&oe, &oe, true);
+            pair(&oe, &fe, false);
+        }
+        (found.items, found.hits) = (items, hits);
     }
 
-    /// Tests box `a` against `others`: records each overlapping pair whose
-    /// intersection's lower corner `max(loₐ, lo_b)` lies in `cell`.
+    /// Tests box `a` against `others`: records each overlapping pair
+    /// (whose intersection's lower corner lies in `cell`, i.e. whose cell
+    /// `max(cellₐ, cell_b)` is `cell`, if `check`). The overlapping boxes
+    /// are first listed without branches.
     #[inline]
-    fn scan(&self, grid: &Grid, cell: u64, a: &Item, others: &[Item], found: &mut Found) {
-        for b in others {
+    #[allow(clippy::too_many_arguments)]
+    fn scan(
+        &self,
+        grid: &Grid,
+        cell: u64,
+        check: bool,
+        a: &Item,
+        others: &[Item],
+        hits: &mut Vec<u32>,
+        found: &mut Found,
+    ) {
+        if hits.len() < others.len() {
+            hits.resize(others.len(), 0);
+        }
+        let mut n = 0;
+        for (j, b) in others.iter().enumerate() {
             let overlap = (a.lo[0] <= b.hi[0])
                 & (b.lo[0] <= a.hi[0])
                 & (a.lo[1] <= b.hi[1])
                 & (b.lo[1] <= a.hi[1])
                 & (a.lo[2] <= b.hi[2])
                 & (b.lo[2] <= a.hi[2]);
-            if overlap {
-                let corner = std::array::from_fn(|k| a.lo[k].max(b.lo[k]));
-                if grid.key(grid.cell(&corner)) == cell {
-                    let (a, b) = (a.id.min(b.id) as usize, a.id.max(b.id) as usize);
-                    self.record(a, b, found);
-                }
+            hits[n] = j as u32;
+            n += usize::from(overlap);
+        }
+        for &j in &hits[..n] {
+            let b = &others[j as usize];
+            if !check || grid.key(std::array::from_fn(|k| a.cell[k].max(b.cell[k]))) == cell {
+                let (a, b) = (a.id.min(b.id) as usize, a.id.max(b.id) as usize);
+                self.record(a, b, found);
             }
         }
     }
@@ -1414,6 +1491,12 @@ mod stats_tmp {
         let mut broad = BroadPhase::new(Parallelism::Sequential);
         let mut found = Candidates::default();
         broad.proximity(&mesh, &x0, distance, &mut found);
+        if std::env::var("LOOP").is_ok() {
+            for _ in 0..300 {
+                broad.proximity(&mesh, &x0, distance, &mut found);
+            }
+            return;
+        }
         let grid = broad.grids[0];
         let own = &broad.own;
         let mask = (1u64 << grid.id_bits) - 1;
@@ -1449,6 +1532,51 @@ mod stats_tmp {
             }
             cells += 1;
             i = j;
+        }
+        {
+            // One cell per box, 27-neighbourhood, h = max side.
+            let n = broad.boxes.len();
+            let hmax = broad
+                .boxes
+                .iter()
+                .map(|b| (b[1] - b[0]).max())
+                .fold(0.0, f64::max);
+            let lo = broad
+                .boxes
+                .iter()
+                .fold(Vec3::repeat(f64::INFINITY), |m, b| m.inf(&b[0]));
+            let mut cells: std::collections::HashMap<[i64; 3], Vec<usize>> = Default::default();
+            for (i, b) in broad.boxes.iter().enumerate() {
+                let c = ((b[0] - lo) / hmax).map(|v| v.floor() as i64);
+                cells.entry([c.x, c.y, c.z]).or_default().push(i);
+            }
+            let mut t = 0usize;
+            for (c, list) in &cells {
+                for dx in -1..=1 {
+                    for dy in -1..=1 {
+                        for dz in -1..=1 {
+                            if let Some(other) = cells.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) {
+                                for &a in list {
+                                    for &b in other {
+                                        let va = a < nv;
+                                        let ea = !va && a < nv + ne;
+                                        let vb = b < nv;
+                                        let eb = !vb && b < nv + ne;
+                                        let tb = b >= nv + ne;
+                                        if (va && tb) || (ea && eb && a < b) {
+                                            t += 1;
+                                        }
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            eprintln!(
+                "one-cell: hmax {hmax} cells {} tests {t} (n {n})",
+                cells.len()
+            );
         }
         eprintln!(
             "boxes {} entries {} cells {} tests {} overlapping(in cell, with dups) {} found {}",

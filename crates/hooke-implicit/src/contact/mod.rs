@@ -51,7 +51,7 @@ mod friction;
 mod obstacles;
 mod pairs;
 
-use hooke_core::{System, Vec3, collision::barrier::barrier};
+use hooke_core::{State, System, Vec3, collision::barrier::barrier};
 
 use crate::matrix::BlockMatrix;
 use friction::Lagged;
@@ -98,10 +98,9 @@ impl Contact {
         !system.obstacles().is_empty() || system.has_surface_contact()
     }
 
-    /// Sets up a step of `h` from `x0` at `time`: the obstacles at the
-    /// step's end, the lagged friction, and the feasible positions the step
-    /// starts from ([`Contact::start`]).
-    pub(crate) fn begin(&mut self, system: &System, x0: &[Vec3], time: f64, h: f64) {
+    /// Sets up the terms for `system` if they were set up for another;
+    /// returns whether it did.
+    fn setup(&mut self, system: &System) -> bool {
         let fresh = self.system != system.id();
         if fresh {
             self.system = system.id();
@@ -119,7 +118,40 @@ impl Contact {
                 pairs.begin(system);
                 pairs
             });
+            self.obstacles.begin(system, 0.0, 0.0, true);
         }
+        fresh
+    }
+
+    /// Moves every free particle of `state` that lies inside an obstacle,
+    /// or within its surface's half thickness of one, out along the normal
+    /// to half the contact distance — a scene set up touching an obstacle —
+    /// before a step; returns how many it moved.
+    pub(crate) fn push_out(&mut self, system: &System, state: &mut State) -> usize {
+        self.setup(system);
+        let time = state.time();
+        let d_hat = self.activation;
+        let mut moved = 0;
+        for (i, x) in state.positions_mut().iter_mut().enumerate() {
+            if system.is_pinned(i) {
+                continue;
+            }
+            for o in system.obstacles() {
+                let (gap, normal) = self.obstacles.gap_at(o, i, *x, time);
+                if gap <= 0.0 {
+                    *x += (0.5 * d_hat - gap) * normal;
+                    moved += 1;
+                }
+            }
+        }
+        moved
+    }
+
+    /// Sets up a step of `h` from `x0` at `time`: the obstacles at the
+    /// step's end, the lagged friction, and the feasible positions the step
+    /// starts from ([`Contact::start`]).
+    pub(crate) fn begin(&mut self, system: &System, x0: &[Vec3], time: f64, h: f64) {
+        let fresh = self.setup(system);
         self.obstacles.begin(system, time, h, fresh);
         self.step = h;
         self.friction.clear();
