@@ -209,7 +209,6 @@ impl BroadPhase {
         out: &mut Candidates,
     ) {
         let parallel = self.search(mesh, x0, x1, distance, false);
-        let t = std::time::Instant::now();
         gather(
             parallel,
             &mut self.found,
@@ -282,9 +281,7 @@ impl BroadPhase {
             return parallel;
         }
 
-        let t0 = std::time::Instant::now();
         self.fill_boxes(mesh, &layout, x0, x1, 0.5 * distance, parallel);
-        let t1 = t0.elapsed();
         self.make_grids(&layout);
         let (grids, boxes) = (&self.grids, &self.boxes);
         self.levels.resize(layout.len, 0);
@@ -311,30 +308,18 @@ impl BroadPhase {
             }
             let (level, levels) = (level as u8, &self.levels);
             let (offsets, own, finer) = (&mut self.offsets, &mut self.own, &mut self.finer);
-            let t2 = std::time::Instant::now();
             fill_entries(&scene, levels, grid, offsets, own, parallel, |l| l == level);
-            let t3 = t2.elapsed();
             finer.clear();
             if level > 0 {
                 fill_entries(&scene, levels, grid, offsets, finer, parallel, |l| {
                     l < level
                 });
             }
-            let t4 = std::time::Instant::now();
             chunk_bounds(own, grid.id_bits, chunks, &mut self.bounds);
             let (own, finer, bounds) = (&*own, &*finer, &self.bounds);
             for_each(parallel, &mut self.found[..chunks], |c, found| {
                 scene.pair_chunk(grid, own, finer, bounds[c]..bounds[c + 1], found);
             });
-            if std::env::var("PH").is_ok() {
-                eprintln!(
-                    "boxes {:?} +levels {:?} entries {:?} pair {:?}",
-                    t1,
-                    t2 - t0,
-                    t3,
-                    t4.elapsed()
-                );
-            }
         }
         if wild {
             for (a, _) in self.levels.iter().enumerate().filter(|&(_, &l)| l == WILD) {
@@ -1473,119 +1458,5 @@ pub(crate) mod tests {
                 );
             }
         }
-    }
-}
-#[cfg(test)]
-mod stats_tmp {
-    use super::tests::*;
-    use super::*;
-    #[test]
-    #[ignore]
-    fn stats() {
-        let n = 100;
-        let (mut x0, triangles) = cloth(n, 1.0 / n as f64);
-        fold(&mut x0, 0.5, 0.5 / n as f64, 0.0);
-        let mut mesh = CollisionMesh::new();
-        mesh.add_surface(&triangles, true);
-        let distance = 0.2 / n as f64;
-        let mut broad = BroadPhase::new(Parallelism::Sequential);
-        let mut found = Candidates::default();
-        broad.proximity(&mesh, &x0, distance, &mut found);
-        if std::env::var("LOOP").is_ok() {
-            for _ in 0..300 {
-                broad.proximity(&mesh, &x0, distance, &mut found);
-            }
-            return;
-        }
-        let grid = broad.grids[0];
-        let own = &broad.own;
-        let mask = (1u64 << grid.id_bits) - 1;
-        let (nv, ne) = (mesh.vertices().len(), mesh.edges().len());
-        let (mut cells, mut tests, mut overl) = (0, 0usize, 0usize);
-        let mut i = 0;
-        while i < own.len() {
-            let key = own[i] >> grid.id_bits;
-            let mut j = i;
-            while j < own.len() && own[j] >> grid.id_bits == key {
-                j += 1;
-            }
-            let ids: Vec<usize> = own[i..j].iter().map(|&e| (e & mask) as usize).collect();
-            let v = ids.iter().filter(|&&d| d < nv).count();
-            let e = ids.iter().filter(|&&d| d >= nv && d < nv + ne).count();
-            let t = ids.len() - v - e;
-            tests += v * t + e * (e.saturating_sub(1)) / 2;
-            for (k, &a) in ids.iter().enumerate() {
-                for &b in &ids[k + 1..] {
-                    let kinds = (
-                        a < nv,
-                        a >= nv && a < nv + ne,
-                        b >= nv + ne,
-                        b >= nv && b < nv + ne,
-                    );
-                    if ((kinds.0 && kinds.2) || (kinds.1 && kinds.3)) {
-                        let ([lo, hi], [lo2, hi2]) = (broad.boxes[a], broad.boxes[b]);
-                        if (0..3).all(|k| lo[k] <= hi2[k] && lo2[k] <= hi[k]) {
-                            overl += 1;
-                        }
-                    }
-                }
-            }
-            cells += 1;
-            i = j;
-        }
-        {
-            // One cell per box, 27-neighbourhood, h = max side.
-            let n = broad.boxes.len();
-            let hmax = broad
-                .boxes
-                .iter()
-                .map(|b| (b[1] - b[0]).max())
-                .fold(0.0, f64::max);
-            let lo = broad
-                .boxes
-                .iter()
-                .fold(Vec3::repeat(f64::INFINITY), |m, b| m.inf(&b[0]));
-            let mut cells: std::collections::HashMap<[i64; 3], Vec<usize>> = Default::default();
-            for (i, b) in broad.boxes.iter().enumerate() {
-                let c = ((b[0] - lo) / hmax).map(|v| v.floor() as i64);
-                cells.entry([c.x, c.y, c.z]).or_default().push(i);
-            }
-            let mut t = 0usize;
-            for (c, list) in &cells {
-                for dx in -1..=1 {
-                    for dy in -1..=1 {
-                        for dz in -1..=1 {
-                            if let Some(other) = cells.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) {
-                                for &a in list {
-                                    for &b in other {
-                                        let va = a < nv;
-                                        let ea = !va && a < nv + ne;
-                                        let vb = b < nv;
-                                        let eb = !vb && b < nv + ne;
-                                        let tb = b >= nv + ne;
-                                        if (va && tb) || (ea && eb && a < b) {
-                                            t += 1;
-                                        }
-                                    }
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-            eprintln!(
-                "one-cell: hmax {hmax} cells {} tests {t} (n {n})",
-                cells.len()
-            );
-        }
-        eprintln!(
-            "boxes {} entries {} cells {} tests {} overlapping(in cell, with dups) {} found {}",
-            broad.boxes.len(),
-            own.len(),
-            cells,
-            tests,
-            overl,
-            found.point_triangle.len() + found.edge_edge.len()
-        );
     }
 }
