@@ -382,11 +382,7 @@ impl BroadPhase {
         let scene = (hi - lo).max();
         let mean = sum / count.max(1) as f64;
         let mut side = if mean > 0.0 {
-            std::env::var("CF")
-                .ok()
-                .and_then(|v| v.parse().ok())
-                .unwrap_or(CELL_FACTOR)
-                * mean
+            CELL_FACTOR * mean
         } else {
             scene.max(1.0)
         };
@@ -515,8 +511,8 @@ fn fill_entries(
             return; // Not kept.
         }
         let (lo, hi) = (
-            grid.cell(&boxes[i][0].into()),
-            grid.cell(&boxes[i][1].into()),
+            grid.cell(&boxes[i][0]),
+            grid.cell(&boxes[i][1]),
         );
         let mut n = 0;
         for k in lo[2]..=hi[2] {
