@@ -2,15 +2,17 @@
 
 use std::fmt::Write;
 
-use hooke_core::{Obstacle, Path, Vec3};
+use hooke_core::{Obstacle, Path, System, Vec3};
 use hooke_scenes::{IntegratorSpec, Scene, SceneBody, SolverSpec};
 
 use crate::cli_error::CliError;
 use crate::runner::check_timing;
 
 /// What `scene` contains, one fact a line: its particles and springs, its
-/// bodies with what each draws, its obstacles, the integrator with its
-/// parameters and the timing with the number of steps and frames.
+/// bodies with what each draws, its obstacles, its collision surfaces (how
+/// many collide with themselves, their thickness and the contact
+/// distance), the integrator with its parameters and the timing with the
+/// number of steps and frames.
 ///
 /// ```
 /// use hooke_scenes::{Cloth, IntegratorSpec, Scene, SceneBody, Timing};
@@ -32,6 +34,7 @@ use crate::runner::check_timing;
 /// let text = hooke_cli::describe(&scene)?;
 /// assert!(text.contains("particles   16"));
 /// assert!(text.contains("100 steps"));
+/// assert!(text.contains("surfaces    1 (1 colliding with itself)"));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
@@ -75,6 +78,9 @@ pub fn describe(scene: &Scene) -> Result<String, CliError> {
     line("obstacles", system.obstacles().len().to_string());
     for obstacle in system.obstacles() {
         line("", obstacle_line(obstacle));
+    }
+    if let Some(surfaces) = surfaces_line(system) {
+        line("surfaces", surfaces);
     }
     line(
         "integrator",
@@ -123,6 +129,29 @@ fn body_line(body: &SceneBody) -> String {
         parts.push(format!("{} segments", body.segments.len()));
     }
     format!("{}: {}", body.name, parts.join(", "))
+}
+
+/// The collision surfaces: how many, how many collide with themselves,
+/// the thickest and the contact distance; `None` without any.
+fn surfaces_line(system: &System) -> Option<String> {
+    let count = system.surface_count();
+    if count == 0 {
+        return None;
+    }
+    let mesh = system.surfaces();
+    let selfish = (0..count).filter(|&g| mesh.collides(g, g)).count();
+    let thickest = (0..count)
+        .map(|g| system.surface_thickness(g))
+        .fold(0.0, f64::max);
+    let thickness = if thickest > 0.0 {
+        format!(", thickness up to {thickest} m")
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "{count} ({selfish} colliding with itself{thickness}), contact distance {:.3e} m",
+        system.contact_distance()
+    ))
 }
 
 fn obstacle_line(obstacle: &Obstacle) -> String {

@@ -54,6 +54,25 @@
 //! | `… --shard I/N` | `stability.shard-I-of-N.json` or `accuracy.shard-I-of-N.json`, with its CSV: part `I` of `N` of the sweep, the jobs numbered `k ≡ I (mod N)` |
 //! | `hooke merge DIR…` | from the partial reports found in the directories, the files of the unsharded command |
 //!
+//! # Collision surfaces
+//!
+//! For a scene with collision surfaces (see `docs/scene-format.md`),
+//! `summary.json` also holds `contact_distance`, `close_pairs_max`,
+//! `smallest_distance` and `intersecting_triangle_pairs` ([`Summary`]), and
+//! `hooke run` prints them as `contact: at most N close pairs, smallest
+//! distance D m (contact distance d̂ m), K intersecting triangle pairs at
+//! the end`. An integrator that cannot keep surfaces apart (every one but
+//! backward Euler and BDF2) fails on a scene whose surfaces collide at its
+//! first step: the command exits with status 1 and `summary.json`'s
+//! `error` says why. The lab commands run such integrators on the scene
+//! without self-collision when that leaves no surfaces colliding (one
+//! cloth), and otherwise report their stability cells not applicable
+//! (`"applicable": false`, the reason in `stopped`); `hooke accuracy`
+//! measures everything without self-collision, since its reference is
+//! classical Runge–Kutta, and refuses a scene whose bodies collide with
+//! each other. Either prints what it did once, as `note: …`, and writes it
+//! in its report's `note`.
+//!
 //! # Errors
 //!
 //! Every command returns a [`CliError`] (wrapping the output layer's

@@ -28,6 +28,16 @@ pub enum LabError {
         /// What does not fit.
         reason: String,
     },
+    /// An accuracy measurement on a scene where surfaces of different
+    /// bodies collide: its reference cannot keep them apart, and turning
+    /// self-collision off does not remove that contact.
+    #[error(
+        "surfaces of different bodies collide in this scene: the accuracy reference ({reference}) cannot keep surfaces apart, and without self-collision they still collide; measure a scene whose surfaces collide only with themselves"
+    )]
+    SurfaceContact {
+        /// The reference's method.
+        reference: &'static str,
+    },
     /// The numerical reference run failed.
     #[error("the reference run ({method} at dt = {dt} s) failed: {reason}")]
     Reference {

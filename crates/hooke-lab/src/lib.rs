@@ -8,6 +8,12 @@
 //! ([`Method::ALL`]) through [`Simulation`](hooke_core::Simulation), which
 //! times the steps alone; a stability run watches its [`EnergyBudget`].
 //!
+//! On a scene whose surfaces collide, the methods that cannot keep them
+//! apart ([`Method::resolves_surface_contact`]) run on the scene without
+//! self-collision when only bodies colliding with themselves made the
+//! contact, and are otherwise not applicable; the reports' `note` says
+//! which (see [`mod@stability`] and [`mod@accuracy`]).
+//!
 //! A sweep runs on many machines in parts: with a [`Shard`] in its options
 //! each part runs its share of the jobs, dealt by their number, and
 //! [`StabilityReport::merge`] or [`AccuracyReport::merge`] combines the
@@ -23,6 +29,7 @@ mod settings;
 mod shard;
 mod spectrum;
 pub mod stability;
+mod surfaces;
 
 pub use accuracy::{AccuracyOptions, AccuracyReport, accuracy};
 pub use budget::EnergyBudget;

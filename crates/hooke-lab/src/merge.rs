@@ -82,6 +82,7 @@ impl StabilityReport {
         })?;
         agree(&parts, "ω_max", |p| (p.omega_max, p.omega_max_bound))?;
         agree(&parts, "limit search", |p| p.limits.is_some())?;
+        agree(&parts, "note", |p| p.note.clone())?;
         let cells = combine(&mut parts, |p| std::mem::take(&mut p.cells))?;
         let limits = if parts[0].limits.is_some() {
             Some(combine(&mut parts, |p| {
@@ -118,6 +119,7 @@ impl AccuracyReport {
         agree(&parts, "ω_max and the motion's scales", |p| {
             (p.omega_max, p.motion_scale, p.position_scale)
         })?;
+        agree(&parts, "note", |p| p.note.clone())?;
         agree(&parts, "reference", |p| {
             let r = &p.reference;
             (

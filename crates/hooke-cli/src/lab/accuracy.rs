@@ -183,6 +183,10 @@ impl LabReport for AccuracyReport {
         self.shard
     }
 
+    fn note(&self) -> Option<&str> {
+        self.note.as_deref()
+    }
+
     fn rows(&self) -> Vec<Vec<String>> {
         self.runs.iter().map(run_row).collect()
     }

@@ -104,6 +104,8 @@ pub(super) trait LabReport: serde::Serialize {
     const COLUMNS: &'static [&'static str];
     /// The part of the sweep it holds, if it is partial.
     fn shard(&self) -> Option<Shard>;
+    /// What it did differently on a scene whose surfaces collide.
+    fn note(&self) -> Option<&str>;
     /// The rows of its CSV table.
     fn rows(&self) -> Vec<Vec<String>>;
     /// Draws its figures into `dir`.
@@ -114,12 +116,15 @@ pub(super) trait LabReport: serde::Serialize {
 
 /// Writes `report` into `dir`: a partial one as `NAME.shard-I-of-N.json`
 /// with its CSV, a whole one as its JSON, CSV and figures, then says what
-/// it wrote on `out`.
+/// it wrote on `out`, after its note, if it has one.
 pub(super) fn write<R: LabReport>(
     report: &R,
     dir: &Path,
     out: &mut dyn std::io::Write,
 ) -> Result<(), CliError> {
+    if let Some(note) = report.note() {
+        writeln!(out, "note: {note}")?;
+    }
     let rows = report.rows().into_iter();
     if let Some(shard) = report.shard() {
         let name = partial_name(R::JSON, shard);
@@ -162,6 +167,7 @@ pub(super) const CELL_COLUMNS: &[&str] = &[
     "wall_s",
     "steps",
     "stopped",
+    "applicable",
 ];
 
 /// A row of `stability.csv`.
@@ -176,6 +182,7 @@ pub(super) fn cell_row(c: &Cell) -> Vec<String> {
         c.wall_s.to_string(),
         c.steps.to_string(),
         field(c.stopped.as_ref()),
+        c.applicable.to_string(),
     ]
 }
 

@@ -88,10 +88,15 @@ fn figures(report: &StabilityReport, dir: &Path) -> Result<(), CliError> {
     write_heat_maps(&heat_maps(report), &path).map_err(|e| CliError::Plot(Box::new(e)))
 }
 
-/// One heat-map panel per integrator, in the report's order.
+/// One heat-map panel per integrator, in the report's order, leaving out
+/// the integrators that are not applicable (unless no other is).
 fn heat_maps(report: &StabilityReport) -> HeatMaps {
     let mut panels: Vec<HeatMapPanel> = Vec::new();
+    let any_applicable = report.cells.iter().any(|c| c.applicable);
     for cell in &report.cells {
+        if any_applicable && !cell.applicable {
+            continue;
+        }
         if panels
             .last()
             .is_none_or(|p| p.title != cell.integrator.name())
@@ -146,6 +151,10 @@ fn print_stability(
     names.dedup();
     for name in names {
         let cells = report.cells.iter().filter(|c| c.integrator == name);
+        if cells.clone().all(|c| !c.applicable) {
+            writeln!(out, "{:<18} {:>14}", name.name(), "not applicable")?;
+            continue;
+        }
         let (stable, total, largest) = cells.fold((0, 0, None::<f64>), |(s, t, l), c| {
             let l = if c.stable {
                 Some(l.map_or(c.h_omega, |l| l.max(c.h_omega)))
@@ -202,6 +211,10 @@ impl LabReport for StabilityReport {
 
     fn shard(&self) -> Option<Shard> {
         self.shard
+    }
+
+    fn note(&self) -> Option<&str> {
+        self.note.as_deref()
     }
 
     fn rows(&self) -> Vec<Vec<String>> {

@@ -76,6 +76,7 @@ const CELL_FACTOR: f64 = 1.5;
 /// The level of a box tested against every box.
 const WILD: u8 = u8::MAX;
 /// Boxes per task when filling entries in parallel.
+#[cfg(feature = "parallel")]
 const GRAIN: usize = 4096;
 
 /// The number of primitives (vertices, edges and triangles) from which
@@ -510,10 +511,7 @@ fn fill_entries(
         if out.is_empty() {
             return; // Not kept.
         }
-        let (lo, hi) = (
-            grid.cell(&boxes[i][0]),
-            grid.cell(&boxes[i][1]),
-        );
+        let (lo, hi) = (grid.cell(&boxes[i][0]), grid.cell(&boxes[i][1]));
         let mut n = 0;
         for k in lo[2]..=hi[2] {
             for j in lo[1]..=hi[1] {

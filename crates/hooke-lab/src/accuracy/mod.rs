@@ -41,6 +41,17 @@
 //! least wall time to an error), so every error plotted lies at least ten
 //! times above the reference's own.
 //!
+//! # Scenes whose surfaces collide
+//!
+//! The reference, classical Runge–Kutta, cannot keep surfaces apart
+//! ([`Method::resolves_surface_contact`](crate::Method::resolves_surface_contact)),
+//! and errors measured against a reference must be errors of one motion.
+//! So on a scene whose surfaces collide only through self-collision, the
+//! reference and every run — the implicit methods' too — take the system
+//! without self-collision, and the report's `note` says so; on a scene
+//! where surfaces of different bodies collide the measurement cannot be
+//! made ([`LabError::SurfaceContact`]).
+//!
 //! # Observed order
 //!
 //! For each method, the slope of the least-squares line through
@@ -106,11 +117,13 @@ use measure::{jobs, largest_distance, measure, reference};
 pub use options::{AccuracyOptions, ReferenceChoice};
 pub(crate) use order::conclude;
 pub use reference::AxialOscillator;
+use reference::REFERENCE_METHOD;
 use reference::rms;
 pub use report::{AccuracyReport, Order, ReferenceKind, ReferenceReport, Run, Series};
 
 use crate::LabError;
 use crate::spectrum::omega_max;
+use crate::surfaces::Systems;
 
 /// Measures `options.methods` on `scene` (see the module docs), calling
 /// `progress(done, total)` after the reference and after each run. With
@@ -120,14 +133,27 @@ use crate::spectrum::omega_max;
 /// # Errors
 /// [`LabError::Invalid`] naming an option out of range,
 /// [`LabError::Parameter`] for a method parameter out of range,
-/// [`LabError::Reference`] if the numerical reference run fails.
+/// [`LabError::Reference`] if the numerical reference run fails,
+/// [`LabError::SurfaceContact`] for a scene whose bodies' surfaces collide
+/// with each other.
 pub fn accuracy(
     scene: &Scene,
     options: &AccuracyOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<AccuracyReport, LabError> {
     options.check()?;
-    let system = &scene.system;
+    let systems = Systems::new(scene.system.clone());
+    let system = systems.common().ok_or(LabError::SurfaceContact {
+        reference: REFERENCE_METHOD.name(),
+    })?;
+    let note = scene.system.has_surface_contact().then(|| {
+        format!(
+            "measured without self-collision: the reference ({}) cannot keep surfaces apart, \
+             so it and every run, the implicit methods' too, take the scene with \
+             self-collision turned off (its bodies may pass through themselves)",
+            REFERENCE_METHOD.name()
+        )
+    });
     let free: Vec<usize> = (0..system.particle_count())
         .filter(|&i| !system.is_pinned(i))
         .collect();
@@ -163,6 +189,7 @@ pub fn accuracy(
         reference,
         runs,
         orders: Vec::new(),
+        note,
         shard: options.shard,
     };
     if report.shard.is_none() {

@@ -120,6 +120,10 @@ pub struct AccuracyReport {
     pub runs: Vec<Run>,
     /// Each method's observed order (none in a partial report).
     pub orders: Vec<Order>,
+    /// What the measurement did differently on a scene whose surfaces
+    /// collide (it ran without self-collision).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
     /// The part of the runs this report holds, if it is partial: its runs
     /// are not yet marked resolved and it has no orders until
     /// [`merge`](crate::merge) combines it with the other parts.

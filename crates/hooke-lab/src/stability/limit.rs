@@ -7,6 +7,7 @@ use hooke_scenes::Scene;
 
 use super::cell::{cell_steps, run_cell};
 use super::{Limit, StabilityOptions};
+use crate::surfaces::{Systems, Target};
 use crate::{LabError, Method};
 
 /// Relative width at which the bisection stops.
@@ -20,14 +21,15 @@ pub const LIMIT_SEARCH_H_OMEGA: f64 = 1e3;
 /// passes both the largest of `options.dts` and `h·ω_max =`
 /// [`LIMIT_SEARCH_H_OMEGA`]), then a geometric bisection narrows the
 /// bracket to a relative width of 10⁻⁴. The search assumes that stability
-/// is lost once, at one step; the methods run in parallel.
+/// is lost once, at one step; the methods run in parallel. Methods that
+/// cannot run the scene (see [`Systems::target`]) are left out.
 pub(super) fn limits(
     scene: &Scene,
     options: &StabilityOptions,
     scale: f64,
     omega_max: f64,
 ) -> Result<Vec<Limit>, LabError> {
-    let system = scene.system.with_stiffness_scale(scale)?;
+    let systems = Systems::new(scene.system.with_stiffness_scale(scale)?);
     let lowest = options.dts.iter().copied().fold(f64::INFINITY, f64::min);
     let omega = omega_max * scale.sqrt();
     let mut highest = options.dts.iter().copied().fold(0.0, f64::max);
@@ -35,9 +37,12 @@ pub(super) fn limits(
         highest = highest.max(LIMIT_SEARCH_H_OMEGA / omega);
     }
     let stable_at = |method: Method, dt: f64| -> Result<bool, LabError> {
+        let Target::Runs(system) = systems.target(method) else {
+            return Ok(false);
+        };
         let steps = cell_steps(options.duration, options.min_steps, dt);
         Ok(run_cell(
-            &system,
+            system,
             method,
             &options.settings,
             dt,
@@ -83,9 +88,15 @@ pub(super) fn limits(
         }
         Ok(limit)
     };
+    let applicable: Vec<Method> = options
+        .methods
+        .iter()
+        .copied()
+        .filter(|&m| matches!(systems.target(m), Target::Runs(_)))
+        .collect();
     let methods = match options.shard {
-        Some(shard) => shard.deal(&options.methods),
-        None => options.methods.clone(),
+        Some(shard) => shard.deal(&applicable),
+        None => applicable,
     };
     #[cfg(feature = "parallel")]
     let found = methods.par_iter().map(search).collect();

@@ -23,6 +23,16 @@
 //! ([`Method::oscillator_stability`]) are stable below that line and
 //! blow up above it.
 //!
+//! # Scenes whose surfaces collide
+//!
+//! The implicit methods run such a scene as it is. The others cannot keep
+//! surfaces apart ([`Method::resolves_surface_contact`]): where only
+//! self-collision makes the contact (one cloth), they run the system
+//! without it, and the report's `note` says so; where surfaces of
+//! different bodies collide, their cells are not `applicable`: not stable,
+//! no steps, `stopped` giving the error their first step returns. The limit
+//! search leaves such methods out.
+//!
 //! # The bound and the limit it finds
 //!
 //! Below its limit a symplectic method's energy oscillates rather than
@@ -46,6 +56,7 @@ use serde::{Deserialize, Serialize};
 use hooke_scenes::Scene;
 
 use crate::spectrum::{Spectrum, omega_max};
+use crate::surfaces::{Systems, Target};
 use crate::{LabError, Method, Range, Settings, Shard};
 use cell::cell_steps;
 pub use cell::{CellRun, run_cell};
@@ -145,8 +156,20 @@ pub struct Cell {
     pub wall_s: f64,
     /// Steps taken (fewer than planned when the run stopped early).
     pub steps: usize,
-    /// Why the run stopped early, if it did.
+    /// Why the run stopped early, if it did (or why the method is not
+    /// applicable).
     pub stopped: Option<String>,
+    /// Whether the method can run the scene: `false` for a method that
+    /// cannot keep surfaces apart on a scene where surfaces of different
+    /// bodies collide (the cell is then not stable, took no steps, and its
+    /// `max_energy_ratio` is `null`).
+    #[serde(default = "applicable")]
+    pub applicable: bool,
+}
+
+/// The default of [`Cell::applicable`] in reports written before it.
+fn applicable() -> bool {
+    true
 }
 
 /// A method's largest stable step.
@@ -191,9 +214,13 @@ pub struct StabilityReport {
     /// Every cell, by method, then stiffness scale, then step.
     pub cells: Vec<Cell>,
     /// Each method's largest stable step, when a limit search was asked
-    /// for.
+    /// for (methods that are not applicable left out).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub limits: Option<Vec<Limit>>,
+    /// What the sweep did differently on a scene whose surfaces collide:
+    /// which methods ran without self-collision or are not applicable.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
     /// The part of the cells (and limit searches) this report holds, if it
     /// is partial (see [`merge`](crate::merge)).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -217,8 +244,8 @@ pub fn stability(
     let systems = options
         .scales
         .iter()
-        .map(|&s| scene.system.with_stiffness_scale(s))
-        .collect::<Result<Vec<_>, _>>()?;
+        .map(|&s| Ok(Systems::new(scene.system.with_stiffness_scale(s)?)))
+        .collect::<Result<Vec<_>, LabError>>()?;
 
     let mut jobs: Vec<(Method, usize, f64)> = options
         .methods
@@ -236,26 +263,45 @@ pub fn stability(
     let cell = |&(method, k, dt): &(Method, usize, f64)| -> Result<Cell, LabError> {
         let scale = options.scales[k];
         let steps = cell_steps(options.duration, options.min_steps, dt);
-        let run = run_cell(
-            &systems[k],
-            method,
-            &options.settings,
-            dt,
-            steps,
-            options.energy_bound,
-        )?;
+        let run = match systems[k].target(method) {
+            Target::Runs(system) => Ok(run_cell(
+                system,
+                method,
+                &options.settings,
+                dt,
+                steps,
+                options.energy_bound,
+            )?),
+            Target::NotApplicable(reason) => Err(reason),
+        };
         let finished = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         progress(finished, total);
-        Ok(Cell {
-            integrator: method,
-            stiffness_scale: scale,
-            dt,
-            stable: run.stable,
-            max_energy_ratio: run.max_energy_ratio,
-            h_omega: dt * spectrum.omega_max * scale.sqrt(),
-            wall_s: run.wall_s,
-            steps: run.steps,
-            stopped: run.stopped,
+        let h_omega = dt * spectrum.omega_max * scale.sqrt();
+        Ok(match run {
+            Ok(run) => Cell {
+                integrator: method,
+                stiffness_scale: scale,
+                dt,
+                stable: run.stable,
+                max_energy_ratio: run.max_energy_ratio,
+                h_omega,
+                wall_s: run.wall_s,
+                steps: run.steps,
+                stopped: run.stopped,
+                applicable: true,
+            },
+            Err(reason) => Cell {
+                integrator: method,
+                stiffness_scale: scale,
+                dt,
+                stable: false,
+                max_energy_ratio: f64::INFINITY,
+                h_omega,
+                wall_s: 0.0,
+                steps: 0,
+                stopped: Some(reason),
+                applicable: false,
+            },
         })
     };
     // Cells differ in cost by orders of magnitude (an adaptive method at
@@ -274,6 +320,7 @@ pub fn stability(
         Some(scale) => Some(limits(scene, options, scale, spectrum.omega_max)?),
         None => None,
     };
+    let note = Systems::new(scene.system.clone()).note(&options.methods);
     Ok(StabilityReport {
         scene: scene.name.clone(),
         energy_bound: options.energy_bound,
@@ -286,6 +333,7 @@ pub fn stability(
         omega_max_bound: spectrum.omega_bound,
         cells,
         limits,
+        note,
         shard: options.shard,
     })
 }
