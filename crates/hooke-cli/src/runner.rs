@@ -177,7 +177,11 @@ pub fn run(
     let implicit = matches!(scene.integrator, IntegratorSpec::Implicit { .. });
     let per_step = |count: usize| implicit.then(|| mean(count, taken));
     let energies = energy.samples();
-    let (energy_gain, energy_gain_time) = budget.max_gain();
+    let (mut energy_gain, energy_gain_time) = budget.max_gain();
+    if energy_gain == f64::NEG_INFINITY {
+        // The run stopped before its first step: it gained nothing.
+        energy_gain = 0.0;
+    }
     let warnings = warnings(&total, &record, &budget);
     let has_surfaces = system.surface_count() > 0;
     let finite_end = state

@@ -90,7 +90,8 @@ pub struct Summary {
     /// Largest energy gain `E(t) − E(0) − W(t)` over the steps, J, with
     /// `E` kinetic plus elastic energy and `W` the work of gravity and
     /// scripted pins (see `hooke_lab::EnergyBudget`): at most zero for the
-    /// exact motion, whose dissipation only lowers it.
+    /// exact motion, whose dissipation only lowers it; zero for a run that
+    /// stopped before its first step.
     pub energy_gain: f64,
     /// When [`energy_gain`](Self::energy_gain) was reached, s.
     pub energy_gain_time: f64,

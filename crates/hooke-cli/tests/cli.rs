@@ -49,6 +49,7 @@ offset = [-0.5, 0.5, -0.5]
 mass = 0.2
 stretch = {{ stiffness = 1e5 }}
 pins = ["top-left", "top-right"]
+self_collision = false  # explicit methods refuse a cloth that collides with itself
 
 [[obstacles]]
 shape = "sphere"

@@ -3,7 +3,7 @@
 //! starting points, the energy test, and the commit of an accepted step.
 //! [`Implicit`]'s docs give the equations.
 
-use hooke_core::{State, StepError, StepReport, System, Vec3};
+use hooke_core::{CompressedSprings, State, StepError, StepReport, System, Vec3};
 
 use crate::assembly::Linearization;
 use crate::contact::Contact;
@@ -192,6 +192,7 @@ impl Implicit {
             pcg,
             report,
             inexact: self.inexact_newton,
+            hessian: CompressedSprings::Exact,
         };
         let outcome = if self.linearized && !has_contact {
             newton::Outcome {

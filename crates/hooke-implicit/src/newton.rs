@@ -82,6 +82,10 @@ pub(crate) struct Newton<'a> {
     pub(crate) report: &'a mut StepReport,
     /// Whether iterative solves stop at the forcing term ([`forcing`]).
     pub(crate) inexact: bool,
+    /// The stiffness blocks the last Newton step was solved with: once a
+    /// step needed compressed springs clamped, its later iterations start
+    /// there instead of assembling and factoring the exact blocks first.
+    pub(crate) hessian: CompressedSprings,
 }
 
 impl Newton<'_> {
@@ -144,7 +148,9 @@ impl Newton<'_> {
     }
 
     /// Newton's step `δ` at `v`: assembles `(M + βh C + β²h² K) δ = −∇Φ(v)`
-    /// with the exact stiffness blocks, or — where that system is not
+    /// with the exact stiffness blocks (unless an earlier iteration of the
+    /// same step needed the clamp, [`Newton::hessian`]), or — where that
+    /// system is not
     /// positive definite or its solution does not descend, and the
     /// integrator clamps compressed springs — with compressed springs
     /// clamped, adds the contact terms' gradients and projected Hessians,
@@ -160,7 +166,7 @@ impl Newton<'_> {
             *x = x_tilde[i] + beta_h * v[i];
             *inertia = -masses[i] * (v[i] - v_tilde[i]);
         });
-        let mut hessian = CompressedSprings::Exact;
+        let mut hessian = self.hessian;
         loop {
             let lin = Linearization {
                 positions: self.x,
@@ -193,6 +199,7 @@ impl Newton<'_> {
             }
             hessian = CompressedSprings::Clamped;
         }
+        self.hessian = hessian;
         Ok(-dot(self.b, delta))
     }
 
@@ -209,7 +216,10 @@ impl Newton<'_> {
     /// `Φ(v + αδ) ≤ Φ(v) + 10⁻⁴ α ∇Φ·δ`:
     ///
     /// - a full step that meets it is extended by doubling `α` (up to 64)
-    ///   while `Φ` keeps falling: where the model is stiffer than `Φ` (a
+    ///   while `Φ` keeps falling and collision detection allows the motion
+    ///   from `α/2` to `α` (checking only that piece keeps continuous
+    ///   collision detection, whose cost grows with the motion, to the
+    ///   step that is tried): where the model is stiffer than `Φ` (a
     ///   clamped compressed spring, the quartic energy of a flat sheet
     ///   bending) Newton's step undershoots;
     /// - a full step that fails it gets the watchdog: one more Newton step
@@ -253,8 +263,8 @@ impl Newton<'_> {
             let slope = self.direction(it.v, it.delta)?;
             outcome.iterations += 1;
             outcome.residual = self.decrement(slope, it.v, it.delta, v0);
-            // The longest multiple of δ collision detection allows.
-            let limit = self.limit(it.v, it.delta, MAX_EXTRAPOLATION);
+            // The longest fraction of δ collision detection allows.
+            let limit = self.limit(it.v, it.delta, 1.0);
             if limit >= 1.0
                 && (outcome.residual <= tolerance || 0.5 * slope.abs() <= current.rounding)
             {
@@ -269,9 +279,18 @@ impl Newton<'_> {
                 combine(it.trial, it.v, 1.0, it.delta);
                 let full = self.potential(it.trial);
                 if sufficient(full, 1.0) {
+                    let previous = current.value;
                     current = full;
-                    let mut alpha = 2.0;
-                    while alpha <= limit {
+                    let mut alpha = if extends(previous, slope, full.value) {
+                        2.0
+                    } else {
+                        f64::INFINITY
+                    };
+                    // Each doubling checks the motion from the last point,
+                    // `α/2 δ`, for collisions.
+                    while alpha <= MAX_EXTRAPOLATION
+                        && self.limit(it.trial, it.delta, 0.5 * alpha) >= 0.5 * alpha
+                    {
                         combine(it.look, it.v, alpha, it.delta);
                         let further = self.potential(it.look);
                         if further.value >= current.value {
@@ -296,6 +315,9 @@ impl Newton<'_> {
                             continue;
                         }
                     }
+                    // The contact candidates are the look-ahead's: check
+                    // the step's own motion again for the backtracking.
+                    self.limit(it.v, it.delta, 1.0);
                 }
             }
             let mut alpha = if limit >= 1.0 { 0.5 } else { limit };
@@ -330,6 +352,16 @@ impl Newton<'_> {
         let contact = self.contact.as_deref_mut().expect("checked above");
         longest * contact.limit(self.system, self.x, self.motion)
     }
+}
+
+/// Whether a step that took `Φ` from `start`, with slope `∇Φ·δ`, to `end`
+/// at the full step is worth extending: the quadratic through the three
+/// has its minimum beyond `1.5 δ` (or is not convex). A doubling whose
+/// trial would not lower `Φ` costs a collision check and an evaluation of
+/// `Φ`; this skips it where the model says the full step is about right.
+fn extends(start: f64, slope: f64, end: f64) -> bool {
+    let curvature = end - start - slope;
+    curvature <= 0.0 || -slope / (2.0 * curvature) > 1.5
 }
 
 /// `v += δ`.

@@ -47,7 +47,12 @@
 //! and its whole build is one sort of integers, rebuilt from scratch at
 //! every search (a bounding volume hierarchy would need refitting and its
 //! traversal branches more; sort-and-sweep along one axis tests a whole
-//! slab of a flat cloth, `O(n^{3/2})`).
+//! slab of a flat cloth, `O(n^{3/2})`). Why our own: parry3d's BVH, the
+//! well-kept candidate, works in `f32` unless built for `f64` throughout,
+//! and searches a tree against itself for a proximity query only; the
+//! contact step needs `f64` boxes, a swept query over a motion, the
+//! exclusion of pairs that share a particle or whose surfaces do not
+//! collide, and sorted output, which here are one short module.
 //!
 //! # Parallelism
 //!

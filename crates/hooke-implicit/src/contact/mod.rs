@@ -199,8 +199,10 @@ impl Contact {
 
     /// The contact terms of `Φ` at positions `x` and velocities `v`:
     /// `κ Σ b(g) + βh Σ D(v)`; infinite if a gap is not positive.
+    /// `x` must lie on the motion last checked by [`Contact::limit`], whose
+    /// pair candidates it reuses.
     pub(crate) fn value(&mut self, system: &System, x: &[Vec3], v: &[Vec3], beta_h: f64) -> f64 {
-        let barrier = self.barrier_energy(system, x);
+        let barrier = self.barrier(system, x);
         let friction: f64 = self
             .friction
             .iter()
@@ -212,10 +214,18 @@ impl Contact {
     /// `κ Σ b(g)` at positions `x`, the obstacles at the step's end;
     /// infinite if a gap is not positive.
     pub(crate) fn barrier_energy(&mut self, system: &System, x: &[Vec3]) -> f64 {
+        if let Some(pairs) = &mut self.pairs {
+            pairs.search(system, x, self.activation);
+        }
+        self.barrier(system, x)
+    }
+
+    /// `κ Σ b(g)` at positions `x` over the pair candidates of the last
+    /// search or checked motion.
+    fn barrier(&self, system: &System, x: &[Vec3]) -> f64 {
         let d_hat = self.activation;
         let mut sum = 0.0;
-        if let Some(pairs) = &mut self.pairs {
-            pairs.search(system, x, d_hat);
+        if let Some(pairs) = &self.pairs {
             sum += pairs.energy(system, x, d_hat);
         }
         for (i, &xi) in x.iter().enumerate() {
@@ -304,7 +314,8 @@ impl Contact {
 
     /// Adds the contact terms at positions `x` and velocities `v` to a
     /// Newton system `A δ = −∇Φ` in the velocities, `x = x̃ + βh v`:
-    /// `b −= βh κ ∇b + βh ∇D` and `A += β²h² κ ∇²b + βh ∇²D`.
+    /// `b −= βh κ ∇b + βh ∇D` and `A += β²h² κ ∇²b + βh ∇²D`. Like
+    /// [`Contact::value`], at a point of the motion last checked.
     pub(crate) fn add(
         &mut self,
         system: &System,
@@ -315,8 +326,7 @@ impl Contact {
         a: &mut BlockMatrix,
     ) {
         let d_hat = self.activation;
-        if let Some(pairs) = &mut self.pairs {
-            pairs.search(system, x, d_hat);
+        if let Some(pairs) = &self.pairs {
             pairs.add(system, x, (self.kappa, beta_h, d_hat), b, a);
         }
         let (kb, kbb) = (self.kappa * beta_h, self.kappa * beta_h * beta_h);
@@ -342,7 +352,10 @@ impl Contact {
     }
 
     /// The largest `τ ∈ [0, 1]` such that the motion from `x` to `x + τ dx`
-    /// keeps every pair at least [`KEEP`] of its gap.
+    /// keeps every pair at least [`KEEP`] of its gap. [`Contact::value`]
+    /// and [`Contact::add`] then hold for the points of this motion: its
+    /// swept broad phase found every pair that comes within reach along
+    /// it, so a line search needs one broad phase, not one a trial point.
     pub(crate) fn limit(&mut self, system: &System, x: &[Vec3], dx: &[Vec3]) -> f64 {
         let mut tau: f64 = 1.0;
         if let Some(pairs) = &mut self.pairs {

@@ -31,10 +31,9 @@ use crate::matrix::BlockMatrix;
 #[derive(Debug, Default)]
 pub(crate) struct Pairs {
     broad: BroadPhase,
-    /// The pairs of the last search within reach.
+    /// The candidates of the last search: the pairs within reach at one
+    /// configuration, or anywhere along a checked motion.
     near: Candidates,
-    /// The pairs whose boxes swept over the last motion overlap.
-    swept: Candidates,
     /// The largest thickness of a pair.
     thickest: f64,
     /// Scratch for the end of a motion.
@@ -112,14 +111,57 @@ impl Pairs {
         );
     }
 
+    /// The squared distance of a pair at `x`, without derivatives.
+    fn squared(pair: &Pair, x: &[Vec3]) -> f64 {
+        let [p0, p1, p2, p3] = pair.positions(x);
+        if pair.edges {
+            edge_edge_closest(p0, p1, p2, p3).squared
+        } else {
+            point_triangle_closest(p0, p1, p2, p3).squared
+        }
+    }
+
+    /// The gap of a pair whose squared distance is `squared`.
+    fn gap(pair: &Pair, squared: f64) -> f64 {
+        squared.max(0.0).sqrt() - pair.thickness
+    }
+
+    /// The edge–edge mollifier threshold of a pair, from its rest positions.
+    fn threshold(system: &System, pair: &Pair) -> f64 {
+        let rest = system.initial_positions();
+        let [r0, r1, r2, r3] = pair.particles.map(|p| rest[p]);
+        mollifier_threshold(r0, r1, r2, r3)
+    }
+
+    /// The barrier term's value of a pair at `x` (`m b(g)` for two edges,
+    /// `b(g)` otherwise): zero beyond the contact distance, infinite if the
+    /// gap is not positive. The line search's cheap path: no derivatives.
+    fn value(system: &System, pair: &Pair, x: &[Vec3], activation: f64) -> f64 {
+        let gap = Self::gap(pair, Self::squared(pair, x));
+        if gap >= activation {
+            return 0.0;
+        }
+        if gap <= 0.0 {
+            return f64::INFINITY;
+        }
+        let b = barrier(gap, activation).0;
+        if pair.edges {
+            let [p0, p1, p2, p3] = pair.positions(x);
+            b * edge_edge_mollifier(p0, p1, p2, p3, Self::threshold(system, pair)).value
+        } else {
+            b
+        }
+    }
+
     /// The barrier term of a pair at `x`, with its derivatives in the
     /// pair's 12 coordinates; `None` beyond the contact distance.
     fn term(system: &System, pair: &Pair, x: &[Vec3], activation: f64) -> Option<Derivatives> {
+        if Self::gap(pair, Self::squared(pair, x)) >= activation {
+            return None;
+        }
         let [p0, p1, p2, p3] = pair.positions(x);
         if pair.edges {
-            let rest = system.initial_positions();
-            let [r0, r1, r2, r3] = pair.particles.map(|p| rest[p]);
-            let threshold = mollifier_threshold(r0, r1, r2, r3);
+            let threshold = Self::threshold(system, pair);
             let squared = edge_edge_squared(p0, p1, p2, p3);
             let mollifier = edge_edge_mollifier(p0, p1, p2, p3, threshold);
             mollified_pair_barrier(&squared, &mollifier, pair.thickness, activation)
@@ -129,16 +171,18 @@ impl Pairs {
         }
     }
 
-    /// `Σ b` over the pairs of the last search at `x` (`κ` not applied);
+    /// `Σ b` over the candidates of the last search at `x`, which must be
+    /// the configuration it searched or a point of the motion it checked
+    /// (`κ` not applied);
     /// infinite if a gap is not positive.
     pub(crate) fn energy(&self, system: &System, x: &[Vec3], activation: f64) -> f64 {
         Self::pairs(system, &self.near)
-            .filter_map(|pair| Self::term(system, &pair, x, activation))
-            .map(|t| t.value)
+            .map(|pair| Self::value(system, &pair, x, activation))
             .sum()
     }
 
-    /// Adds `κ Σ b` at `x` to a Newton system in the velocities
+    /// Adds `κ Σ b` over the candidates of the last search (as in
+    /// [`Pairs::energy`]) at `x` to a Newton system in the velocities
     /// (`x = x̃ + βh v`): `b −= βh κ ∇b`, `A += β²h² κ ∇²b`; returns the
     /// number of pairs within the contact distance.
     pub(crate) fn add(
@@ -188,9 +232,7 @@ impl Pairs {
             }
             let [p0, p1, p2, p3] = pair.positions(x);
             let (closest, mollifier) = if pair.edges {
-                let rest = system.initial_positions();
-                let [r0, r1, r2, r3] = pair.particles.map(|p| rest[p]);
-                let threshold = mollifier_threshold(r0, r1, r2, r3);
+                let threshold = Self::threshold(system, &pair);
                 (
                     edge_edge_closest(p0, p1, p2, p3),
                     edge_edge_mollifier(p0, p1, p2, p3, threshold).value,
@@ -222,13 +264,7 @@ impl Pairs {
     pub(crate) fn closest(&self, system: &System, x: &[Vec3], activation: f64) -> (usize, f64) {
         let (mut count, mut smallest) = (0, f64::INFINITY);
         for pair in Self::pairs(system, &self.near) {
-            let [p0, p1, p2, p3] = pair.positions(x);
-            let squared = if pair.edges {
-                edge_edge_squared(p0, p1, p2, p3).value
-            } else {
-                point_triangle_squared(p0, p1, p2, p3).value
-            };
-            let gap = squared.sqrt() - pair.thickness;
+            let gap = Self::gap(&pair, Self::squared(&pair, x));
             if gap < activation {
                 count += 1;
                 smallest = smallest.min(gap);
@@ -240,7 +276,9 @@ impl Pairs {
     /// The largest `τ ∈ [0, 1]` such that the motion from `x` to `x + τ dx`
     /// keeps every pair at least `keep` of its gap (additive CCD on the
     /// pairs whose boxes, swept over the motion and inflated by the contact
-    /// distance `d̂` and the thickness, overlap).
+    /// distance `d̂` and the thickness, overlap). Those pairs become the
+    /// candidates of [`Pairs::energy`] and [`Pairs::add`]: every pair within
+    /// reach at any point of the motion is among them.
     pub(crate) fn limit(
         &mut self,
         system: &System,
@@ -255,10 +293,10 @@ impl Pairs {
             x,
             &self.end,
             activation + self.thickest,
-            &mut self.swept,
+            &mut self.near,
         );
         let mut tau: f64 = 1.0;
-        for pair in Self::pairs(system, &self.swept) {
+        for pair in Self::pairs(system, &self.near) {
             let (q, d) = (pair.positions(x), pair.particles.map(|p| dx[p]));
             let t = if pair.edges {
                 edge_edge_ccd(q, d, pair.thickness, keep)
