@@ -27,13 +27,33 @@ use hooke_core::{Mat3, System, Vec3};
 use super::friction::{Lagged, symmetric};
 use crate::matrix::BlockMatrix;
 
+/// How far beyond the contact distance `d̂` (plus thickness) a proximity
+/// search reaches, in units of `d̂`: its candidates stay valid, at any
+/// positions and along any motion, while no particle is more than half
+/// that margin from where they were found (a Verlet list).
+const MARGIN: f64 = 4.0;
+
 /// The pairs of a system's surfaces, with the broad phase's buffers.
+///
+/// A proximity search at `x_s` with reach `d̂ + ξ + s` (`ξ` the largest
+/// thickness, `s` the margin) lists every pair closer than that; a pair
+/// left out stays farther than `d̂ + ξ` apart as long as every particle
+/// keeps within `s/2` of `x_s` — a ball is convex, so along a straight
+/// motion between two such configurations too. The list then holds every
+/// pair with a barrier term and every pair that can collide, and serves
+/// the iterations of a step, and the steps after it, until a particle
+/// leaves its ball. A motion that would leave it gets a swept search.
 #[derive(Debug, Default)]
 pub(crate) struct Pairs {
     broad: BroadPhase,
-    /// The candidates of the last search: the pairs within reach at one
-    /// configuration, or anywhere along a checked motion.
+    /// The candidates of the last search: the pairs within reach of its
+    /// positions (with the margin), or anywhere along a checked motion.
     near: Candidates,
+    /// The positions of the last proximity search, while its candidates
+    /// are a Verlet list (not after a swept search).
+    reference: Option<Vec<Vec3>>,
+    /// The margin `s` of the last proximity search.
+    margin: f64,
     /// The largest thickness of a pair.
     thickest: f64,
     /// Scratch for the end of a motion.
@@ -100,15 +120,36 @@ impl Pairs {
         point_triangle.chain(edge_edge)
     }
 
-    /// Finds the pairs within the contact distance `d̂` (plus their
-    /// thickness) at `x`.
+    /// Makes the candidates cover `x`: every pair within the contact
+    /// distance `d̂` (plus its thickness) there is among them. Keeps the
+    /// list while `x` lies within its margin, otherwise searches anew.
     pub(crate) fn search(&mut self, system: &System, x: &[Vec3], activation: f64) {
+        if !self.covers(x) {
+            self.refresh(system, x, activation);
+        }
+    }
+
+    /// Whether every particle at `y` lies within half the margin of the
+    /// last proximity search's positions.
+    fn covers(&self, y: &[Vec3]) -> bool {
+        let reach = (0.5 * self.margin).powi(2);
+        self.reference.as_ref().is_some_and(|r| {
+            r.len() == y.len() && r.iter().zip(y).all(|(r, y)| (y - r).norm_squared() < reach)
+        })
+    }
+
+    /// A proximity search at `x` with the margin (see the type's docs).
+    fn refresh(&mut self, system: &System, x: &[Vec3], activation: f64) {
+        self.margin = MARGIN * activation;
         self.broad.proximity(
             system.surfaces(),
             x,
-            activation + self.thickest,
+            activation + self.thickest + self.margin,
             &mut self.near,
         );
+        let reference = self.reference.get_or_insert_with(Vec::new);
+        reference.clear();
+        reference.extend_from_slice(x);
     }
 
     /// The squared distance of a pair at `x`, without derivatives.
@@ -276,7 +317,8 @@ impl Pairs {
     /// The largest `τ ∈ [0, 1]` such that the motion from `x` to `x + τ dx`
     /// keeps every pair at least `keep` of its gap (additive CCD on the
     /// pairs whose boxes, swept over the motion and inflated by the contact
-    /// distance `d̂` and the thickness, overlap). Those pairs become the
+    /// distance `d̂` and the thickness, overlap — or on the Verlet list, when
+    /// the motion stays within its margin). Those pairs become the
     /// candidates of [`Pairs::energy`] and [`Pairs::add`]: every pair within
     /// reach at any point of the motion is among them.
     pub(crate) fn limit(
@@ -288,13 +330,21 @@ impl Pairs {
     ) -> f64 {
         self.end.clear();
         self.end.extend(x.iter().zip(dx).map(|(x, d)| x + d));
-        self.broad.swept(
-            system.surfaces(),
-            x,
-            &self.end,
-            activation + self.thickest,
-            &mut self.near,
-        );
+        if !(self.covers(x) && self.covers(&self.end)) {
+            let reach = (0.5 * MARGIN * activation).powi(2);
+            if dx.iter().all(|d| d.norm_squared() < reach) {
+                self.refresh(system, x, activation);
+            } else {
+                self.reference = None;
+                self.broad.swept(
+                    system.surfaces(),
+                    x,
+                    &self.end,
+                    activation + self.thickest,
+                    &mut self.near,
+                );
+            }
+        }
         let mut tau: f64 = 1.0;
         for pair in Self::pairs(system, &self.near) {
             let (q, d) = (pair.positions(x), pair.particles.map(|p| dx[p]));
