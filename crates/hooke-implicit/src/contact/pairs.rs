@@ -358,3 +358,90 @@ impl Pairs {
         tau
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hooke_core::SystemBuilder;
+
+    /// Two 6 × 6 sheets, 10 cm wide, 2 mm apart, with a contact distance of
+    /// 1 mm.
+    fn sheets() -> System {
+        let mut b = SystemBuilder::new();
+        let n = 6;
+        for height in [0.0, 2e-3] {
+            let mut indices = Vec::new();
+            for i in 0..n {
+                for j in 0..n {
+                    let (u, v) = (0.02 * i as f64, 0.02 * j as f64);
+                    indices.push(b.particle(1e-3, [u + 0.3 * height, height, v]));
+                }
+            }
+            let at = |i: usize, j: usize| indices[i * n + j];
+            let mut triangles = Vec::new();
+            for i in 0..n - 1 {
+                for j in 0..n - 1 {
+                    triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                    triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+                }
+            }
+            b.surface(&triangles);
+        }
+        b.contact_distance(1e-3);
+        b.build().unwrap()
+    }
+
+    /// The pairs of `candidates` closer than `reach` at `x`.
+    fn within(system: &System, candidates: &Candidates, x: &[Vec3], reach: f64) -> Vec<[usize; 4]> {
+        let mut close: Vec<[usize; 4]> = Pairs::pairs(system, candidates)
+            .filter(|p| Pairs::gap(p, Pairs::squared(p, x)) < reach)
+            .map(|p| p.particles)
+            .collect();
+        close.sort_unstable();
+        close
+    }
+
+    #[test]
+    fn the_verlet_list_holds_every_close_pair_until_a_particle_leaves_its_ball() {
+        let system = sheets();
+        let d_hat = system.contact_distance();
+        let x0 = system.initial_positions().to_vec();
+        let mut pairs = Pairs::default();
+        pairs.begin(&system);
+        pairs.search(&system, &x0, d_hat);
+        // Every particle moved by just under half the margin, in a
+        // pseudo-random direction: the list is kept, and still holds every
+        // pair a fresh search finds within d̂.
+        let mut seed = 7_u64;
+        let mut unit = || {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            (seed >> 11) as f64 / (1_u64 << 53) as f64 - 0.5
+        };
+        let reach = 0.5 * MARGIN * d_hat;
+        let x1: Vec<Vec3> = x0
+            .iter()
+            .map(|x| {
+                let d = Vec3::new(unit(), unit(), unit()).normalize();
+                x + 0.99 * reach * d
+            })
+            .collect();
+        pairs.search(&system, &x1, d_hat);
+        assert_eq!(
+            pairs.reference.as_deref(),
+            Some(&x0[..]),
+            "the list was renewed"
+        );
+        let mut fresh = Candidates::default();
+        BroadPhase::default().proximity(system.surfaces(), &x1, d_hat, &mut fresh);
+        let needed = within(&system, &fresh, &x1, d_hat);
+        assert!(!needed.is_empty());
+        let kept = within(&system, &pairs.near, &x1, d_hat);
+        assert_eq!(kept, needed);
+        // One particle beyond its ball: the list is renewed at the new
+        // positions.
+        let mut x2 = x1.clone();
+        x2[0] += Vec3::new(0.0, 1.01 * reach, 0.0) + (x0[0] - x1[0]);
+        pairs.search(&system, &x2, d_hat);
+        assert_eq!(pairs.reference.as_deref(), Some(&x2[..]));
+    }
+}
