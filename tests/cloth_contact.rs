@@ -49,6 +49,10 @@ struct Outcome {
     kinetic: f64,
     /// Largest distance a particle moved in one step over the last 0.5 s.
     jitter: f64,
+    /// The energy (kinetic, springs, gravity) at the start and its largest
+    /// value after any step.
+    start: f64,
+    peak: f64,
 }
 
 fn drop(system: &System, integrator: &mut dyn Integrator, dt: f64, duration: f64) -> Outcome {
@@ -56,9 +60,12 @@ fn drop(system: &System, integrator: &mut dyn Integrator, dt: f64, duration: f64
     let steps = (duration / dt).round() as usize;
     let settle = steps - (0.5 / dt).round() as usize;
     let (mut deepest, mut jitter): (f64, f64) = (0.0, 0.0);
+    let start = system.energy(&state).unwrap().total();
+    let mut peak = f64::NEG_INFINITY;
     for step in 0..steps {
         let before = state.positions().to_vec();
         integrator.step(system, &mut state, dt).unwrap();
+        peak = peak.max(system.energy(&state).unwrap().total());
         let t = state.time();
         for x in state.positions() {
             deepest = deepest.max(-system.obstacles()[0].distance(*x, t).0);
@@ -79,6 +86,8 @@ fn drop(system: &System, integrator: &mut dyn Integrator, dt: f64, duration: f64
         deepest,
         kinetic,
         jitter,
+        start,
+        peak,
     }
 }
 
@@ -109,6 +118,13 @@ fn backward_euler_rests_cloth_on_a_sphere_and_a_floor() {
         let mut integrator = Implicit::backward_euler();
         let outcome = drop(&system, &mut integrator, 1.0 / 60.0, 4.0);
         check(&format!("backward Euler on the {label}"), &outcome);
+        // Backward Euler never gains energy, the landing included.
+        assert!(
+            outcome.peak <= outcome.start * (1.0 + 1e-9),
+            "backward Euler on the {label}: the energy rose from {} J to {} J",
+            outcome.start,
+            outcome.peak
+        );
     }
 }
 
