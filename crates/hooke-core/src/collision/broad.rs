@@ -866,37 +866,7 @@ fn threads() -> usize {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-
-    /// SplitMix64: a seeded generator for the tests.
-    pub(crate) struct Rng(u64);
-
-    impl Rng {
-        pub(crate) fn new(seed: u64) -> Self {
-            Self(seed)
-        }
-
-        fn next(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        }
-
-        /// Uniform in `[0, 1)`.
-        pub(crate) fn unit(&mut self) -> f64 {
-            (self.next() >> 11) as f64 / (1u64 << 53) as f64
-        }
-
-        /// Uniform in `[-1, 1)³`.
-        pub(crate) fn vector(&mut self) -> Vec3 {
-            Vec3::new(self.unit(), self.unit(), self.unit()) * 2.0 - Vec3::repeat(1.0)
-        }
-
-        pub(crate) fn below(&mut self, n: usize) -> usize {
-            (self.next() % n as u64) as usize
-        }
-    }
+    use crate::collision::distance::tests::Rng;
 
     /// A flat `n × n` grid cloth of the given spacing in the plane `z = 0`,
     /// two triangles per square.
@@ -944,10 +914,14 @@ pub(crate) mod tests {
         step: f64,
     ) -> (Vec<Vec3>, Vec<[usize; 3]>) {
         let particles = count + 8;
-        let mut at = Vec3::new(rng.unit(), rng.unit(), rng.unit());
+        let mut at = Vec3::new(
+            rng.uniform(0.0, 1.0),
+            rng.uniform(0.0, 1.0),
+            rng.uniform(0.0, 1.0),
+        );
         let x: Vec<Vec3> = (0..particles)
             .map(|_| {
-                at = (at + rng.vector() * step).map(|c| c.clamp(0.0, 1.0));
+                at = (at + rng.vec3(1.0) * step).map(|c| c.clamp(0.0, 1.0));
                 at
             })
             .collect();
@@ -1087,7 +1061,7 @@ pub(crate) mod tests {
     fn test_distances_agree_with_sampling() {
         let mut rng = Rng::new(11);
         for _ in 0..200 {
-            let [p, a, b, c] = [(); 4].map(|()| rng.vector());
+            let [p, a, b, c] = [(); 4].map(|()| rng.vec3(1.0));
             let mut sampled = f64::INFINITY;
             let mut segments = f64::INFINITY;
             for i in 0..=60 {
@@ -1267,7 +1241,7 @@ pub(crate) mod tests {
             let x1: Vec<Vec3> = x0
                 .iter()
                 .map(|p| {
-                    let r = rng.unit();
+                    let r = rng.uniform(0.0, 1.0);
                     // Most move a little, some across the scene, a few far.
                     let reach = if r < 0.8 {
                         0.01
@@ -1276,7 +1250,7 @@ pub(crate) mod tests {
                     } else {
                         50.0
                     };
-                    p + rng.vector() * reach
+                    p + rng.vec3(1.0) * reach
                 })
                 .collect();
             broad.swept(&mesh, &x0, &x1, 0.01, &mut found);
@@ -1359,7 +1333,14 @@ pub(crate) mod tests {
         let mut rng = Rng::new(7);
         let x1: Vec<Vec3> = x0
             .iter()
-            .map(|p| p + rng.vector() * if rng.unit() < 0.99 { 0.005 } else { 0.3 })
+            .map(|p| {
+                p + rng.vec3(1.0)
+                    * if rng.uniform(0.0, 1.0) < 0.99 {
+                        0.005
+                    } else {
+                        0.3
+                    }
+            })
             .collect();
         let mut mesh = CollisionMesh::new();
         mesh.add_surface(&triangles, true);
@@ -1392,70 +1373,5 @@ pub(crate) mod tests {
             ));
         }
         assert!(results[0] == results[1] && results[1] == results[2]);
-    }
-
-    /// The time this thread has run on a core, s (Linux; 0 elsewhere):
-    /// unlike the wall time, not lengthened by other processes.
-    fn thread_cpu() -> f64 {
-        std::fs::read_to_string("/proc/thread-self/schedstat")
-            .ok()
-            .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-            .map_or(0.0, |ns| ns * 1e-9)
-    }
-
-    /// Timings on folded `n × n` cloths, `n` from `HOOKE_BROAD_SIDES`
-    /// (default `32,100,316,500`): `cargo test -p hooke-core --release
-    /// --lib collision::broad::tests::timing -- --ignored --nocapture`.
-    #[test]
-    #[ignore = "timing, run by hand"]
-    fn timing() {
-        let sides: Vec<usize> = std::env::var("HOOKE_BROAD_SIDES").map_or_else(
-            |_| vec![32, 100, 316, 500],
-            |s| s.split(',').filter_map(|n| n.parse().ok()).collect(),
-        );
-        for n in sides {
-            let (mut x0, triangles) = cloth(n, 1.0 / n as f64);
-            fold(&mut x0, 0.5, 0.5 / n as f64, 0.0);
-            let mut rng = Rng::new(1);
-            let x1: Vec<Vec3> = x0
-                .iter()
-                .map(|p| p + rng.vector() * (0.3 / n as f64))
-                .collect();
-            let mut mesh = CollisionMesh::new();
-            mesh.add_surface(&triangles, true);
-            let distance = 0.2 / n as f64;
-            for parallelism in [Parallelism::Sequential, Parallelism::Auto] {
-                let (mut broad, mut found) = (BroadPhase::new(parallelism), Candidates::default());
-                let mut time = |f: &mut dyn FnMut(&mut BroadPhase, &mut Candidates)| {
-                    f(&mut broad, &mut found);
-                    let runs = (2_000_000 / (n * n)).clamp(3, 200);
-                    let (mut wall, mut cpu) = (f64::INFINITY, f64::INFINITY);
-                    for _ in 0..runs {
-                        let (start, on_cpu) = (std::time::Instant::now(), thread_cpu());
-                        f(&mut broad, &mut found);
-                        wall = wall.min(start.elapsed().as_secs_f64());
-                        cpu = cpu.min(thread_cpu() - on_cpu);
-                    }
-                    (
-                        wall * 1e3,
-                        cpu * 1e3,
-                        found.point_triangle.len() + found.edge_edge.len(),
-                    )
-                };
-                let near = time(&mut |b, c| b.proximity(&mesh, &x0, distance, c));
-                let swept = time(&mut |b, c| b.swept(&mesh, &x0, &x1, distance, c));
-                eprintln!(
-                    "{n}² = {} vertices, {} triangles, {parallelism:?}: proximity {:.2} ms (this thread on a core {:.2} ms; {} pairs), swept {:.2} ms ({:.2} ms; {} pairs)",
-                    n * n,
-                    triangles.len(),
-                    near.0,
-                    near.1,
-                    near.2,
-                    swept.0,
-                    swept.1,
-                    swept.2
-                );
-            }
-        }
     }
 }

@@ -387,6 +387,11 @@ pub(crate) mod tests {
             z ^ (z >> 31)
         }
 
+        /// Uniform on `0..n`.
+        pub(crate) fn below(&mut self, n: usize) -> usize {
+            (self.next_u64() % n as u64) as usize
+        }
+
         /// Uniform on `[lo, hi)`.
         pub(crate) fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
             let u = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
