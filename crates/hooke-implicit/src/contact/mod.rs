@@ -228,18 +228,25 @@ impl Contact {
         if let Some(pairs) = &self.pairs {
             sum += pairs.energy(system, x, d_hat);
         }
+        self.close_gaps(system, x, |_, gap, _| sum += barrier(gap, d_hat).0);
+        self.kappa * sum
+    }
+
+    /// Calls `f(i, g, n)` for every free particle `i` within the contact
+    /// distance of an obstacle at its place at the step's end, with its gap
+    /// `g` and the obstacle's normal `n` there.
+    fn close_gaps(&self, system: &System, x: &[Vec3], mut f: impl FnMut(usize, f64, Vec3)) {
         for (i, &xi) in x.iter().enumerate() {
             if system.is_pinned(i) {
                 continue;
             }
             for k in 0..self.obstacles.len() {
-                let gap = self.obstacles.gap(k, i, xi).0;
-                if gap < d_hat {
-                    sum += barrier(gap, d_hat).0;
+                let (gap, normal) = self.obstacles.gap(k, i, xi);
+                if gap < self.activation {
+                    f(i, gap, normal);
                 }
             }
         }
-        self.kappa * sum
     }
 
     /// `κ Σ b(g)` at the positions `x0` of the step's start, the obstacles
@@ -330,22 +337,14 @@ impl Contact {
             pairs.add(system, x, (self.kappa, beta_h, d_hat), b, a);
         }
         let (kb, kbb) = (self.kappa * beta_h, self.kappa * beta_h * beta_h);
-        for (i, &xi) in x.iter().enumerate() {
-            if system.is_pinned(i) {
-                continue;
-            }
-            for k in 0..self.obstacles.len() {
-                let (gap, n) = self.obstacles.gap(k, i, xi);
-                if gap < d_hat {
-                    let (_, slope, curvature) = barrier(gap, d_hat);
-                    b[i] -= kb * slope * n;
-                    a.add_contact_row(
-                        i,
-                        crate::block::SymBlock::rank_one_plus_identity(kbb * curvature, n, 0.0),
-                    );
-                }
-            }
-        }
+        self.close_gaps(system, x, |i, gap, n| {
+            let (_, slope, curvature) = barrier(gap, d_hat);
+            b[i] -= kb * slope * n;
+            a.add_contact_row(
+                i,
+                crate::block::SymBlock::rank_one_plus_identity(kbb * curvature, n, 0.0),
+            );
+        });
         for f in &self.friction {
             f.add(v, self.sticking, beta_h, b, a);
         }
@@ -380,18 +379,10 @@ impl Contact {
             pairs.search(system, x, d_hat);
             (count, smallest) = pairs.closest(system, x, d_hat);
         }
-        for (i, &xi) in x.iter().enumerate() {
-            if system.is_pinned(i) {
-                continue;
-            }
-            for k in 0..self.obstacles.len() {
-                let gap = self.obstacles.gap(k, i, xi).0;
-                if gap < d_hat {
-                    count += 1;
-                    smallest = smallest.min(gap);
-                }
-            }
-        }
+        self.close_gaps(system, x, |_, gap, _| {
+            count += 1;
+            smallest = smallest.min(gap);
+        });
         self.smallest_gap = self.smallest_gap.min(smallest);
         if smallest < CLOSE * d_hat && self.kappa < MAX_STIFFENING * self.kappa_start {
             self.kappa *= 2.0;
