@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use crate::collision::surface::CollisionMesh;
 use crate::error::{BuildError, Quantity, SpringParameter};
 use crate::system::fresh_system_id;
-use crate::{Obstacle, Path, Spring, System, Vec3};
+use crate::{Obstacle, Path, Spring, System, Tet, Vec3};
 
 /// Builds a [`System`]; every value is checked at [`SystemBuilder::build`],
 /// which names the first particle, spring or field that is wrong.
@@ -30,6 +30,7 @@ pub struct SystemBuilder {
     positions: Vec<Vec3>,
     velocities: Vec<Vec3>,
     springs: Vec<SpringEntry>,
+    tets: Vec<([usize; 4], f64)>,
     pins: Vec<usize>,
     pin_paths: Vec<(usize, Path)>,
     gravity: Option<Vec3>,
@@ -194,6 +195,24 @@ impl SystemBuilder {
         self.springs.last_mut().expect("a spring was just pushed")
     }
 
+    /// Adds a volume element on four particles with modulus `κ` in Pa (see
+    /// [`Tet`]): its rest volume is theirs at their initial positions, in
+    /// either orientation; a modulus of 0 adds an element that only
+    /// measures its volume ([`System::inversion`]). Returns its index.
+    ///
+    /// ```
+    /// let mut b = hooke_core::SystemBuilder::new();
+    /// let p = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|x| b.particle(1.0, x));
+    /// b.tet(p, 1e4);
+    /// let system = b.build()?;
+    /// assert_eq!(system.tets()[0].rest_volume, 1.0 / 6.0);
+    /// # Ok::<(), hooke_core::BuildError>(())
+    /// ```
+    pub fn tet(&mut self, vertices: [usize; 4], modulus: f64) -> usize {
+        self.tets.push((vertices, modulus));
+        self.tets.len() - 1
+    }
+
     /// Pins particle `i`: its acceleration is zero, so it keeps its initial
     /// velocity. Pinning twice is harmless.
     ///
@@ -309,11 +328,12 @@ impl SystemBuilder {
     ///
     /// # Errors
     /// The first problem found, in this order: particles (mass, position,
-    /// velocity), springs (endpoints, parameters, duplicates), pins, gravity,
-    /// air damping, obstacles. See [`BuildError`].
+    /// velocity), springs (endpoints, parameters, duplicates), volume
+    /// elements, pins, gravity, air damping, obstacles. See [`BuildError`].
     pub fn build(&self) -> Result<System, BuildError> {
         self.check_particles()?;
         let springs = self.resolved_springs()?;
+        let tets = self.resolved_tets()?;
         let particles = self.masses.len();
         let mut pinned = vec![false; particles];
         for &particle in &self.pins {
@@ -371,6 +391,7 @@ impl SystemBuilder {
             initial_velocities: velocities,
             pin_paths,
             springs,
+            tets,
             gravity: self.gravity,
             air_damping: self.air_damping,
             obstacles: self.obstacles.clone(),
@@ -378,6 +399,39 @@ impl SystemBuilder {
             surface_properties,
             contact_distance,
         })
+    }
+
+    /// The volume elements, checked and oriented.
+    fn resolved_tets(&self) -> Result<Vec<Tet>, BuildError> {
+        let particles = self.masses.len();
+        let mut tets = Vec::with_capacity(self.tets.len());
+        for (tet, &(vertices, modulus)) in self.tets.iter().enumerate() {
+            let problem = |problem: String| BuildError::InvalidTet { tet, problem };
+            if let Some(&p) = vertices.iter().find(|&&p| p >= particles) {
+                return Err(problem(format!(
+                    "names particle {p}, but the system has {particles}"
+                )));
+            }
+            if let Some(p) = (0..4).find_map(|a| {
+                vertices[a + 1..]
+                    .contains(&vertices[a])
+                    .then_some(vertices[a])
+            }) {
+                return Err(problem(format!("names particle {p} twice")));
+            }
+            if !(modulus.is_finite() && modulus >= 0.0) {
+                return Err(problem(format!(
+                    "modulus must be finite and non-negative, got {modulus}"
+                )));
+            }
+            let corners = vertices.map(|p| self.positions[p]);
+            tets.push(Tet::at_rest(vertices, modulus, corners).ok_or_else(|| {
+                problem(format!(
+                    "particles {vertices:?} have no volume at their initial positions"
+                ))
+            })?);
+        }
+        Ok(tets)
     }
 
     /// The collision mesh of the surfaces and their thicknesses and friction

@@ -5,8 +5,9 @@
 //! rest, the total energy obeys
 //!
 //! ```text
-//! d/dt (T + V_springs + V_gravity) = −P_dissipation,
+//! d/dt (T + V_springs + V_volume + V_gravity) = −P_dissipation,
 //! T = Σ ½ mᵢ|vᵢ|²,   V_springs = Σ ½ k (l − L)²,   V_gravity = −Σ mᵢ g·xᵢ,
+//! V_volume = Σ_tets ½ κ V₀ (J − 1)²,
 //! P_dissipation = Σ_springs c ((vᵢ − vⱼ)·d)² + Σ_free γ |vᵢ|²  ≥ 0,
 //! ```
 //!
@@ -20,7 +21,8 @@ use crate::{State, StepError, System};
 pub struct Energy {
     /// Kinetic energy `Σ ½ mᵢ |vᵢ|²`.
     pub kinetic: f64,
-    /// Elastic energy of the springs `Σ ½ k (l − L)²`.
+    /// Elastic energy of the springs `Σ ½ k (l − L)²` and of the volume
+    /// elements `Σ ½ κ V₀ (J − 1)²`.
     pub elastic: f64,
     /// Gravitational potential `−Σ mᵢ g·xᵢ` (zero without gravity).
     pub gravitational: f64,
@@ -60,7 +62,12 @@ impl System {
             .zip(v)
             .map(|(m, vi)| 0.5 * m * vi.norm_squared())
             .sum();
-        let elastic = self.springs.iter().map(|s| s.energy(x[s.i], x[s.j])).sum();
+        let elastic = self
+            .springs
+            .iter()
+            .map(|s| s.energy(x[s.i], x[s.j]))
+            .chain(self.tets.iter().map(|t| t.energy(x)))
+            .sum();
         let gravitational = self.gravity.map_or(0.0, |g| {
             -self
                 .masses

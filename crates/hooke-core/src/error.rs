@@ -142,6 +142,15 @@ pub enum BuildError {
         /// What is wrong.
         problem: String,
     },
+    /// A volume element that names a particle that does not exist, repeats
+    /// one, has no rest volume or an invalid modulus.
+    #[error("volume element {tet}: {problem}")]
+    InvalidTet {
+        /// Index of the element, in the order added.
+        tet: usize,
+        /// What is wrong.
+        problem: String,
+    },
     /// The contact distance is not positive and finite.
     #[error("contact distance must be positive and finite, got {value}")]
     InvalidContactDistance {

@@ -69,6 +69,7 @@ mod spring;
 mod state;
 mod step;
 mod system;
+mod volume;
 
 pub use builder::{SpringEntry, SurfaceEntry, SystemBuilder};
 pub use contact::respond_to_contact;
@@ -83,7 +84,8 @@ pub use simulation::{End, Run, Simulation};
 pub use spring::{CompressedSprings, Linearized, Spring};
 pub use state::{History, State};
 pub use step::{Start, StepBuffers};
-pub use system::System;
+pub use system::{Inversion, System};
+pub use volume::{Mat12, Tet, TetDerivatives};
 
 /// A 3-vector of `f64`: positions, velocities, forces.
 pub type Vec3 = nalgebra::Vector3<f64>;

@@ -4,7 +4,7 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::collision::surface::CollisionMesh;
-use crate::{BuildError, Obstacle, Path, Spring, SpringParameter, State, StepError, Vec3};
+use crate::{BuildError, Obstacle, Path, Spring, SpringParameter, State, StepError, Tet, Vec3};
 
 static NEXT_SYSTEM_ID: AtomicU64 = AtomicU64::new(1);
 
@@ -17,8 +17,8 @@ static NEXT_SYSTEM_ID: AtomicU64 = AtomicU64::new(1);
 /// fᵢ = Σ_springs fᵢ^spring  +  mᵢ g  −  γ vᵢ
 /// ```
 ///
-/// where gravity `g` and air damping `γ` are present only if the system
-/// declares them. A pinned particle has zero acceleration: it keeps its
+/// plus the forces of the volume elements ([`Tet`]), where gravity `g` and
+/// air damping `γ` are present only if the system declares them. A pinned particle has zero acceleration: it keeps its
 /// initial velocity (zero unless one was given), whatever force acts on it.
 #[derive(Debug, Clone)]
 pub struct System {
@@ -30,6 +30,7 @@ pub struct System {
     pub(crate) initial_positions: Vec<Vec3>,
     pub(crate) initial_velocities: Vec<Vec3>,
     pub(crate) springs: Vec<Spring>,
+    pub(crate) tets: Vec<Tet>,
     pub(crate) gravity: Option<Vec3>,
     pub(crate) air_damping: Option<f64>,
     pub(crate) obstacles: Vec<Obstacle>,
@@ -40,6 +41,15 @@ pub struct System {
     /// coefficient.
     pub(crate) surface_properties: Vec<[f64; 2]>,
     pub(crate) contact_distance: f64,
+}
+
+/// The state of a system's volume elements ([`System::inversion`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Inversion {
+    /// Elements with volume ratio `J ≤ 0` (or not a number).
+    pub inverted: usize,
+    /// The smallest volume ratio `J = V/V₀`.
+    pub smallest_ratio: f64,
 }
 
 pub(crate) fn fresh_system_id() -> u64 {
@@ -120,6 +130,39 @@ impl System {
         &self.springs
     }
 
+    /// The volume elements, in the order they were added.
+    #[must_use]
+    pub fn tets(&self) -> &[Tet] {
+        &self.tets
+    }
+
+    /// How many volume elements are inverted (volume ratio `J ≤ 0`) at
+    /// positions `x`, and the smallest `J`; `None` for a system without
+    /// volume elements.
+    ///
+    /// # Panics
+    /// If `x` does not have one entry per particle.
+    #[must_use]
+    pub fn inversion(&self, x: &[Vec3]) -> Option<Inversion> {
+        assert_eq!(x.len(), self.particle_count(), "one position per particle");
+        self.tets
+            .iter()
+            .map(|t| t.volume_ratio(x))
+            .fold(None, |acc, j| {
+                let Inversion {
+                    inverted,
+                    smallest_ratio,
+                } = acc.unwrap_or(Inversion {
+                    inverted: 0,
+                    smallest_ratio: f64::INFINITY,
+                });
+                Some(Inversion {
+                    inverted: inverted + usize::from(j <= 0.0 || j.is_nan()),
+                    smallest_ratio: smallest_ratio.min(j),
+                })
+            })
+    }
+
     /// Gravitational acceleration `g`, if the system has gravity.
     #[must_use]
     pub fn gravity(&self) -> Option<Vec3> {
@@ -161,9 +204,10 @@ impl System {
         }
     }
 
-    /// This system with every spring's stiffness multiplied by `factor`:
-    /// the same particles, rest lengths, damping, forces and obstacles, as a
-    /// new system with its own [`System::id`]. The natural frequencies of
+    /// This system with every spring's stiffness and every volume
+    /// element's modulus multiplied by `factor`: the same particles, rest
+    /// lengths, damping, forces and obstacles, as a new system with its own
+    /// [`System::id`]. The natural frequencies of
     /// the undamped system scale as `√factor`.
     ///
     /// ```
@@ -178,7 +222,8 @@ impl System {
     /// # Errors
     /// [`BuildError::InvalidSpringParameter`] naming the first spring whose
     /// scaled stiffness is negative, NaN or infinite (a `factor` that is
-    /// negative or not finite, or one that overflows a stiffness).
+    /// negative or not finite, or one that overflows a stiffness);
+    /// [`BuildError::InvalidTet`] likewise for a volume element's modulus.
     pub fn with_stiffness_scale(&self, factor: f64) -> Result<Self, BuildError> {
         let mut scaled = self.clone();
         scaled.id = fresh_system_id();
@@ -192,6 +237,16 @@ impl System {
                 });
             }
             s.stiffness = value;
+        }
+        for (tet, t) in scaled.tets.iter_mut().enumerate() {
+            let value = t.modulus * factor;
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(BuildError::InvalidTet {
+                    tet,
+                    problem: format!("scaled modulus must be finite and non-negative, got {value}"),
+                });
+            }
+            t.modulus = value;
         }
         Ok(scaled)
     }

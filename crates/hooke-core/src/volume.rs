@@ -1,0 +1,373 @@
+//! [`Tet`]: a volume element, the energy that keeps a tetrahedron's signed
+//! volume near its rest volume and pushes an inverted one back out.
+//!
+//! Springs know lengths, not volumes: a tetrahedron and its mirror image
+//! have the same edge lengths, so a spring body turned inside out is at
+//! rest. A volume element adds the energy
+//!
+//! ```text
+//! E = ½ κ V₀ (J − 1)²,   J = V / V₀ = det F,   F = Dₛ Dₘ⁻¹,
+//! ```
+//!
+//! with `V` the tetrahedron's signed volume, `V₀ > 0` its rest volume, `κ`
+//! the modulus (Pa, a bulk modulus) and `F` the deformation gradient that
+//! maps the rest edges `Dₘ = [X₁ − X₀, X₂ − X₀, X₃ − X₀]` to the current
+//! ones `Dₛ` (Teschner, Heidelberger, Müller & Gross, *A versatile and
+//! robust model for geometrically complex deformable solids*, 2004). It is
+//! a polynomial in the positions: finite and smooth for every `J`, a flat
+//! (`J = 0`) or inverted (`J < 0`) tetrahedron included, where its force
+//! `−κ V₀ (J − 1) ∇J` points toward positive volume (`∇J` is the faces'
+//! area-weighted normals divided by `3V₀`), unlike energies with `ln J`,
+//! which are infinite there. The springs already carry a body's shape and
+//! shear; the element carries the one thing they cannot tell, the sign and
+//! size of the volume.
+//!
+//! **Hessian.** `∇²E = κ V₀ (∇J ∇Jᵀ + (J − 1) ∇²J)` is indefinite away
+//! from rest. In terms of `F = U Σ Vᵀ` (`U`, `V` rotations, `σ₂` negative
+//! for an inverted element) it has closed-form eigenpairs (Smith, de Goes
+//! & Kim, *Analytic eigensystems for isotropic distortion energies*, 2019):
+//! with `E' = κ V₀ (J − 1)`,
+//!
+//! - three twist modes `U (eₐe_bᵀ − e_beₐᵀ) Vᵀ / √2` with eigenvalue
+//!   `E' σ_c` and three flip modes `U (eₐe_bᵀ + e_beₐᵀ) Vᵀ / √2` with
+//!   `−E' σ_c` (`{a, b, c} = {0, 1, 2}`);
+//! - three scaling modes `U diag(w) Vᵀ`, `w` the eigenvectors of the 3 × 3
+//!   matrix `κ V₀ g gᵀ + E' A`, `g = (σ₁σ₂, σ₀σ₂, σ₀σ₁)`,
+//!   `A = [[0, σ₂, σ₁], [σ₂, 0, σ₀], [σ₁, σ₀, 0]]`.
+//!
+//! [`Tet::hessian`] clamps the negative eigenvalues to zero: the projected
+//! Hessian is positive semidefinite, equal to the exact one where that is,
+//! and costs one 3 × 3 SVD and one 3 × 3 symmetric eigensolve per element.
+
+use nalgebra::{Matrix3, SMatrix, SymmetricEigen};
+
+use crate::{Mat3, Vec3};
+
+/// A 12 × 12 matrix: the Hessian of one element in its four vertices'
+/// coordinates, vertex `a`'s rows and columns at `3a..3a + 3`.
+pub type Mat12 = SMatrix<f64, 12, 12>;
+
+/// A volume element: four particles, their rest volume and the modulus of
+/// the energy `½ κ V₀ (J − 1)²` (see the [module docs](self)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tet {
+    /// The four particles, ordered so that the rest volume is positive.
+    pub vertices: [usize; 4],
+    /// The modulus `κ` in Pa (0: the element only measures its volume).
+    pub modulus: f64,
+    /// The rest volume `V₀ > 0` in m³.
+    pub rest_volume: f64,
+    /// `Dₘ⁻¹`, the inverse of the rest edge matrix.
+    rest_inverse: Mat3,
+}
+
+/// The energy, gradient and Hessian of one element at a configuration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TetDerivatives {
+    /// `E`, J.
+    pub energy: f64,
+    /// `∂E/∂xₐ` for the four vertices, N (minus the forces on them).
+    pub gradient: [Vec3; 4],
+    /// `∇²E`, exact or projected onto its positive part.
+    pub hessian: Mat12,
+}
+
+impl Tet {
+    /// The element on `vertices` at rest at `positions`, reordered (its last
+    /// two vertices swapped) if their signed volume is negative; `None` if
+    /// the four points are degenerate (a volume below 10⁻¹² of the longest
+    /// edge cubed) or not finite.
+    #[must_use]
+    pub fn at_rest(vertices: [usize; 4], modulus: f64, positions: [Vec3; 4]) -> Option<Self> {
+        let mut vertices = vertices;
+        let mut p = positions;
+        let mut rest = edges(&p);
+        let mut volume = rest.determinant() / 6.0;
+        let longest = (0..4)
+            .flat_map(|a| (a + 1..4).map(move |b| (a, b)))
+            .map(|(a, b)| (p[a] - p[b]).norm())
+            .fold(0.0, f64::max);
+        if !(volume.is_finite() && volume.abs() > 1e-12 * longest.powi(3)) {
+            return None;
+        }
+        if volume < 0.0 {
+            vertices.swap(2, 3);
+            p.swap(2, 3);
+            rest = edges(&p);
+            volume = -volume;
+        }
+        Some(Self {
+            vertices,
+            modulus,
+            rest_volume: volume,
+            rest_inverse: rest.try_inverse()?,
+        })
+    }
+
+    /// The four vertices' positions in `x`.
+    fn corners(&self, x: &[Vec3]) -> [Vec3; 4] {
+        self.vertices.map(|i| x[i])
+    }
+
+    /// The deformation gradient `F = Dₛ Dₘ⁻¹` at positions `x`.
+    #[must_use]
+    pub fn deformation(&self, x: &[Vec3]) -> Mat3 {
+        edges(&self.corners(x)) * self.rest_inverse
+    }
+
+    /// The volume ratio `J = V / V₀` at positions `x`: 1 at rest, 0 flat,
+    /// negative inverted.
+    #[must_use]
+    pub fn volume_ratio(&self, x: &[Vec3]) -> f64 {
+        self.deformation(x).determinant()
+    }
+
+    /// The energy `½ κ V₀ (J − 1)²` at positions `x`, J.
+    #[must_use]
+    pub fn energy(&self, x: &[Vec3]) -> f64 {
+        let j = self.volume_ratio(x);
+        0.5 * self.modulus * self.rest_volume * (j - 1.0) * (j - 1.0)
+    }
+
+    /// The forces `−∂E/∂xₐ` on the four vertices at positions `x`, N.
+    #[must_use]
+    pub fn forces(&self, x: &[Vec3]) -> [Vec3; 4] {
+        let f = self.deformation(x);
+        let scale = -self.modulus * self.rest_volume * (f.determinant() - 1.0);
+        self.spread(&(scale * cofactor(&f)))
+    }
+
+    /// `[∂⟨P, F⟩/∂xₐ]ₐ`: the gradient in the vertices of a function whose
+    /// gradient in `F` is `P` (`F` is linear in the positions).
+    fn spread(&self, p: &Mat3) -> [Vec3; 4] {
+        let g = p * self.rest_inverse.transpose();
+        let (g1, g2, g3): (Vec3, Vec3, Vec3) =
+            (g.column(0).into(), g.column(1).into(), g.column(2).into());
+        [-(g1 + g2 + g3), g1, g2, g3]
+    }
+
+    /// The energy, gradient and Hessian at positions `x`; with `project`,
+    /// the Hessian's negative eigenvalues (in the basis of the module docs)
+    /// are clamped to zero, so it is positive semidefinite.
+    #[must_use]
+    pub fn derivatives(&self, x: &[Vec3], project: bool) -> TetDerivatives {
+        let f = self.deformation(x);
+        let j = f.determinant();
+        let stiffness = self.modulus * self.rest_volume;
+        let slope = stiffness * (j - 1.0);
+        let gradient = self.spread(&(slope * cofactor(&f)));
+        let (u, sigma, v) = signed_svd(&f);
+        let [s0, s1, s2] = [sigma[0], sigma[1], sigma[2]];
+        let mut hessian = Mat12::zeros();
+        let mut add_mode = |lambda: f64, d: Mat3| {
+            if project && lambda <= 0.0 {
+                return;
+            }
+            let w = self.spread(&(u * d * v.transpose()));
+            let w = SMatrix::<f64, 12, 1>::from_iterator(w.iter().flat_map(|c| c.iter().copied()));
+            hessian += lambda * w * w.transpose();
+        };
+        let r = std::f64::consts::FRAC_1_SQRT_2;
+        for (a, b, c) in [(1, 2, 0), (2, 0, 1), (0, 1, 2)] {
+            let mut twist = Mat3::zeros();
+            twist[(a, b)] = -r;
+            twist[(b, a)] = r;
+            add_mode(slope * sigma[c], twist);
+            let mut flip = Mat3::zeros();
+            flip[(a, b)] = r;
+            flip[(b, a)] = r;
+            add_mode(-slope * sigma[c], flip);
+        }
+        let g = Vec3::new(s1 * s2, s0 * s2, s0 * s1);
+        let a = Matrix3::new(0.0, s2, s1, s2, 0.0, s0, s1, s0, 0.0);
+        let scaling = SymmetricEigen::new(stiffness * g * g.transpose() + slope * a);
+        for k in 0..3 {
+            let w = scaling.eigenvectors.column(k);
+            add_mode(scaling.eigenvalues[k], Mat3::from_diagonal(&w));
+        }
+        TetDerivatives {
+            energy: 0.5 * stiffness * (j - 1.0) * (j - 1.0),
+            gradient,
+            hessian,
+        }
+    }
+}
+
+/// The edge matrix `[p₁ − p₀, p₂ − p₀, p₃ − p₀]`.
+fn edges(p: &[Vec3; 4]) -> Mat3 {
+    Mat3::from_columns(&[p[1] - p[0], p[2] - p[0], p[3] - p[0]])
+}
+
+/// `∂ det F / ∂F`, the cofactor matrix: its columns are the cross products
+/// of the other two columns of `F`.
+fn cofactor(f: &Mat3) -> Mat3 {
+    let (c0, c1, c2) = (f.column(0), f.column(1), f.column(2));
+    Mat3::from_columns(&[c1.cross(&c2), c2.cross(&c0), c0.cross(&c1)])
+}
+
+/// `F = U diag(σ) Vᵀ` with `U` and `V` rotations: where a reflection is
+/// needed, the last singular value carries the sign (negative for
+/// `det F < 0`).
+fn signed_svd(f: &Mat3) -> (Mat3, Vec3, Mat3) {
+    let svd = f.svd(true, true);
+    let mut u = svd.u.expect("requested");
+    let mut v = svd.v_t.expect("requested").transpose();
+    let mut sigma = svd.singular_values;
+    if u.determinant() < 0.0 {
+        u.column_mut(2).neg_mut();
+        sigma[2] = -sigma[2];
+    }
+    if v.determinant() < 0.0 {
+        v.column_mut(2).neg_mut();
+        sigma[2] = -sigma[2];
+    }
+    (u, sigma, v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A tet with a non-trivial rest shape, modulus 1000 Pa.
+    fn tet() -> (Tet, [Vec3; 4]) {
+        let rest = [
+            Vec3::new(0.1, 0.0, 0.05),
+            Vec3::new(1.1, 0.2, 0.0),
+            Vec3::new(0.3, 0.9, 0.1),
+            Vec3::new(0.2, 0.3, 1.2),
+        ];
+        (Tet::at_rest([0, 1, 2, 3], 1000.0, rest).unwrap(), rest)
+    }
+
+    /// Configurations: at rest, stretched and sheared, nearly flat (the apex
+    /// almost in the base's plane), inverted (the apex through the base).
+    fn configurations() -> Vec<(&'static str, [Vec3; 4])> {
+        let (_, rest) = tet();
+        let stretched = rest.map(|p| Vec3::new(1.3 * p.x + 0.2 * p.y, 0.9 * p.y, 1.1 * p.z));
+        let base_normal = (rest[1] - rest[0]).cross(&(rest[2] - rest[0])).normalize();
+        let height = (rest[3] - rest[0]).dot(&base_normal);
+        let mut flat = rest;
+        flat[3] -= 0.999 * height * base_normal;
+        let mut inverted = rest;
+        inverted[3] -= 1.6 * height * base_normal;
+        vec![
+            ("rest", rest),
+            ("stretched", stretched),
+            ("nearly flat", flat),
+            ("inverted", inverted),
+        ]
+    }
+
+    fn flat(x: &[Vec3; 4]) -> [f64; 12] {
+        let mut out = [0.0; 12];
+        for (a, p) in x.iter().enumerate() {
+            out[3 * a..3 * a + 3].copy_from_slice(p.as_slice());
+        }
+        out
+    }
+
+    fn shifted(x: &[Vec3; 4], k: usize, by: f64) -> [Vec3; 4] {
+        let mut y = *x;
+        y[k / 3][k % 3] += by;
+        y
+    }
+
+    #[test]
+    fn rest_volume_and_orientation() {
+        let (t, rest) = tet();
+        let expected = (rest[1] - rest[0])
+            .cross(&(rest[2] - rest[0]))
+            .dot(&(rest[3] - rest[0]))
+            / 6.0;
+        assert!((t.rest_volume - expected).abs() < 1e-15);
+        assert!((t.volume_ratio(&rest) - 1.0).abs() < 1e-14);
+        let mirrored =
+            Tet::at_rest([0, 1, 3, 2], 1.0, [rest[0], rest[1], rest[3], rest[2]]).unwrap();
+        assert_eq!(mirrored.vertices, [0, 1, 2, 3]);
+        assert!(Tet::at_rest([0, 1, 2, 3], 1.0, [rest[0], rest[1], rest[2], rest[0]]).is_none());
+    }
+
+    /// The gradient against central differences of the energy, the exact
+    /// Hessian against central differences of the gradient, in every
+    /// configuration.
+    #[test]
+    fn gradient_and_hessian_match_finite_differences() {
+        let (t, _) = tet();
+        for (name, x) in configurations() {
+            let d = t.derivatives(&x, false);
+            assert!((d.energy - t.energy(&x)).abs() <= 1e-12 * d.energy.max(1.0));
+            let forces = t.forces(&x);
+            let h = 1e-6;
+            let scale = d.hessian.amax();
+            for k in 0..12 {
+                let (plus, minus) = (shifted(&x, k, h), shifted(&x, k, -h));
+                let numeric = (t.energy(&plus) - t.energy(&minus)) / (2.0 * h);
+                let analytic = d.gradient[k / 3][k % 3];
+                assert!(
+                    (numeric - analytic).abs() <= 1e-6 * scale,
+                    "{name}: ∂E/∂x[{k}] = {analytic}, differences give {numeric}"
+                );
+                assert!((forces[k / 3][k % 3] + analytic).abs() <= 1e-12 * scale);
+                let (gp, gm) = (
+                    flat(&t.derivatives(&plus, false).gradient),
+                    flat(&t.derivatives(&minus, false).gradient),
+                );
+                for l in 0..12 {
+                    let numeric = (gp[l] - gm[l]) / (2.0 * h);
+                    assert!(
+                        (numeric - d.hessian[(l, k)]).abs() <= 1e-6 * scale,
+                        "{name}: H[{l}, {k}] = {}, differences give {numeric}",
+                        d.hessian[(l, k)]
+                    );
+                }
+            }
+        }
+    }
+
+    /// The projected Hessian is positive semidefinite on random
+    /// deformations, inverted ones included, and equals the exact one at
+    /// rest (where the exact one is).
+    #[test]
+    fn projected_hessian_is_positive_semidefinite() {
+        let (t, rest) = tet();
+        let mut rng = crate::collision::distance::tests::Rng::new(7);
+        for _ in 0..200 {
+            let x = rest.map(|p| p + Vec3::from_fn(|_, _| rng.uniform(-0.6, 0.6)));
+            let h = t.derivatives(&x, true).hessian;
+            let exact = t.derivatives(&x, false).hessian;
+            let eigen = SymmetricEigen::new(h).eigenvalues;
+            let scale = exact.amax();
+            assert!(
+                eigen.min() >= -1e-10 * scale,
+                "eigenvalue {} at J = {}",
+                eigen.min(),
+                t.volume_ratio(&x)
+            );
+            // Only the negative part is removed: the difference is negative
+            // semidefinite.
+            let removed = SymmetricEigen::new(exact - h).eigenvalues;
+            assert!(removed.max() <= 1e-10 * scale);
+        }
+        let at_rest = t.derivatives(&rest, true).hessian;
+        assert!((at_rest - t.derivatives(&rest, false).hessian).amax() <= 1e-12 * at_rest.amax());
+    }
+
+    /// An inverted element's force raises its volume, a compressed one's
+    /// too, a stretched one's lowers it.
+    #[test]
+    fn forces_push_toward_the_rest_volume() {
+        let (t, rest) = tet();
+        for (name, x) in configurations().into_iter().skip(1) {
+            let j = t.volume_ratio(&x);
+            let f = t.forces(&x);
+            let step = 1e-7;
+            let moved: [Vec3; 4] = std::array::from_fn(|a| x[a] + step * f[a]);
+            let change = t.volume_ratio(&moved) - j;
+            assert!(
+                change * (1.0 - j) > 0.0,
+                "{name}: J = {j} moved by {change}"
+            );
+        }
+        assert!(t.forces(&rest).iter().all(|f| f.norm() < 1e-10));
+    }
+}
