@@ -122,6 +122,14 @@ impl Tet {
         self.deformation(x).determinant()
     }
 
+    /// `∂J/∂xₐ` for the four vertices at positions `x`, 1/m: the
+    /// area-weighted normal of the face opposite vertex `a`, pointing
+    /// toward `a`, over `3V₀`.
+    #[must_use]
+    pub fn volume_gradient(&self, x: &[Vec3]) -> [Vec3; 4] {
+        self.spread(&cofactor(&self.deformation(x)))
+    }
+
     /// The energy `½ κ V₀ (J − 1)²` at positions `x`, J.
     #[must_use]
     pub fn energy(&self, x: &[Vec3]) -> f64 {
@@ -132,9 +140,8 @@ impl Tet {
     /// The forces `−∂E/∂xₐ` on the four vertices at positions `x`, N.
     #[must_use]
     pub fn forces(&self, x: &[Vec3]) -> [Vec3; 4] {
-        let f = self.deformation(x);
-        let scale = -self.modulus * self.rest_volume * (f.determinant() - 1.0);
-        self.spread(&(scale * cofactor(&f)))
+        let scale = -self.modulus * self.rest_volume * (self.volume_ratio(x) - 1.0);
+        self.volume_gradient(x).map(|g| scale * g)
     }
 
     /// `[∂⟨P, F⟩/∂xₐ]ₐ`: the gradient in the vertices of a function whose

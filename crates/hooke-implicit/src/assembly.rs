@@ -110,6 +110,10 @@ pub struct Assembler {
     touched: Vec<Range<usize>>,
     /// Per slot: the spring's damping direction, frozen at the step's start.
     directions: Vec<Vec3>,
+    /// Per particle: the volume elements' sums into its diagonal block and
+    /// right-hand side.
+    volume_diagonals: Vec<SymBlock>,
+    volume_rhs: Vec<Vec3>,
 }
 
 impl Assembler {
@@ -136,7 +140,7 @@ impl Assembler {
     ) -> Result<(), StepError> {
         let n = system.particle_count();
         let m = system.springs().len();
-        a.clear_contacts();
+        a.clear_extra();
         self.directions.resize(m, Vec3::zeros());
         jacobi.inverses.resize(n, SymBlock::default());
         if n == 0 {
@@ -144,6 +148,7 @@ impl Assembler {
         }
         let (bh, bh2) = (lin.beta_h, lin.beta_h * lin.beta_h);
         let (x, v) = (lin.positions, lin.velocities);
+        let volume = self.volume_terms(system, lin, a);
 
         // Pass one: each chunk of slots writes its springs' blocks and
         // scatters them, with their right-hand-side shares, into its own
@@ -229,10 +234,11 @@ impl Assembler {
         }
 
         // Pass two, per particle: the mass and air-damping terms plus the
-        // accumulated springs.
+        // accumulated springs and volume elements.
         let (masses, gravity, gamma) = (system.masses(), system.gravity(), system.air_damping());
         let air = bh * gamma.unwrap_or(0.0);
         let (diagonals, accumulated) = (&self.diagonals, &self.rhs);
+        let (volume_diagonals, volume_rhs) = (&self.volume_diagonals, &self.volume_rhs);
         let non_finite = AtomicUsize::new(usize::MAX);
         let not_definite = AtomicUsize::new(usize::MAX);
         for_each_row3(
@@ -254,6 +260,10 @@ impl Assembler {
                         block.add_assign(&diagonals[p * n + i]);
                         rhs += accumulated[p * n + i];
                     }
+                }
+                if volume {
+                    block.add_assign(&volume_diagonals[i]);
+                    rhs += volume_rhs[i];
                 }
                 *diagonal = block;
                 *bi = rhs;
@@ -283,6 +293,48 @@ impl Assembler {
         }
     }
 
+    /// Adds the volume elements' blocks between their vertices to `a` and
+    /// gathers their diagonal blocks and right-hand-side shares per
+    /// particle; returns whether the system has elements with a modulus.
+    fn volume_terms(
+        &mut self,
+        system: &System,
+        lin: &Linearization<'_>,
+        a: &mut BlockMatrix,
+    ) -> bool {
+        let mut tets = system.tets().iter().filter(|t| t.modulus > 0.0).peekable();
+        if tets.peek().is_none() {
+            return false;
+        }
+        let n = system.particle_count();
+        let (bh, bh2) = (lin.beta_h, lin.beta_h * lin.beta_h);
+        self.volume_diagonals.clear();
+        self.volume_diagonals.resize(n, SymBlock::default());
+        self.volume_rhs.clear();
+        self.volume_rhs.resize(n, Vec3::zeros());
+        for t in tets {
+            let d = t.derivatives(lin.positions, true);
+            let block =
+                |p: usize, q: usize| d.hessian.fixed_view::<3, 3>(3 * p, 3 * q).into_owned();
+            for (p, &i) in t.vertices.iter().enumerate() {
+                let mut share = -d.gradient[p];
+                if let Some(u) = lin.displacement {
+                    for (q, &j) in t.vertices.iter().enumerate() {
+                        share -= block(p, q) * u[j];
+                    }
+                }
+                self.volume_rhs[i] += bh * share;
+                let diagonal = SymBlock::symmetric_part(&(bh2 * block(p, p)));
+                self.volume_diagonals[i].add_assign(&diagonal);
+                a.extra_rows.push((i as u32, diagonal));
+                for (q, &j) in t.vertices.iter().enumerate().skip(p + 1) {
+                    a.extra_pairs.push((i as u32, j as u32, bh2 * block(p, q)));
+                }
+            }
+        }
+        true
+    }
+
     /// The incremental potential whose gradient in `v` is minus the
     /// residual of the step,
     ///
@@ -290,7 +342,8 @@ impl Assembler {
     /// Φ(v) = ½ Σ mᵢ|vᵢ − ṽᵢ|² + V(x̃ + βh v) + ½βh [Σ_s c_s (d_s·(vᵢ − vⱼ))² + γ Σ |vᵢ|²]
     /// ```
     ///
-    /// with `V` the spring and gravitational potential and `d_s` the frozen
+    /// with `V` the spring, volume-element and gravitational potential and
+    /// `d_s` the frozen
     /// damping directions; `x` must hold `x̃ + βh v`. Also returns the
     /// rounding level of `Φ`: `ε` times the sum of its terms' magnitudes,
     /// plus each spring's `k |l − L| ε (|xᵢ| + |xⱼ|)` — the energy that the
@@ -330,9 +383,142 @@ impl Assembler {
             }
             (e, e + rounding)
         });
+        let (volume, volume_rounding) = volume_energy(system, x);
         Potential {
-            value: particles + springs,
-            rounding: f64::EPSILON * (particles_magnitude + springs_rounding),
+            value: particles + springs + volume,
+            rounding: f64::EPSILON * (particles_magnitude + springs_rounding + volume_rounding),
+        }
+    }
+}
+
+/// The volume elements' energy `Σ ½ κ V₀ (J − 1)²` at positions `x`, and the
+/// sum of the energies plus the energy the rounding of the vertices'
+/// coordinates puts into them, `κ V₀ |J − 1| |∇J| max|x|` per element
+/// (divided by ε).
+pub(crate) fn volume_energy(system: &System, x: &[Vec3]) -> (f64, f64) {
+    let (mut energy, mut rounding) = (0.0, 0.0);
+    for t in system.tets().iter().filter(|t| t.modulus > 0.0) {
+        let e = t.energy(x);
+        let slope = (2.0 * e * t.modulus * t.rest_volume).sqrt();
+        let reach = t.vertices.iter().map(|&i| x[i].amax()).fold(0.0, f64::max);
+        let gradient = t.rest_volume.cbrt().recip();
+        energy += e;
+        rounding += e + slope * gradient * reach;
+    }
+    (energy, rounding)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hooke_core::SystemBuilder;
+
+    /// Two tetrahedra sharing a face, springs on some of their edges,
+    /// deformed so that one is inverted; gravity and air damping on.
+    fn system() -> (System, Vec<Vec3>) {
+        let mut b = SystemBuilder::new();
+        let rest = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.2, 0.0, 0.9],
+            [0.3, 0.8, 0.2],
+            [0.4, -0.9, 0.3],
+        ];
+        let p: Vec<usize> = rest.iter().map(|&x| b.particle(0.5, x)).collect();
+        for (i, j) in [(0, 1), (1, 2), (2, 3), (3, 4)] {
+            b.spring(p[i], p[j], 50.0).damping(0.3);
+        }
+        b.tet([p[0], p[1], p[2], p[3]], 2e3);
+        b.tet([p[0], p[1], p[2], p[4]], 5e2);
+        b.gravity([0.0, -9.81, 0.0]).air_damping(0.1);
+        let system = b.build().unwrap();
+        let mut x = system.initial_positions().to_vec();
+        x[3] = Vec3::new(0.35, -0.3, 0.25);
+        x[1] += Vec3::new(0.2, 0.1, -0.1);
+        (system, x)
+    }
+
+    /// The assembled right-hand side at a Newton iterate is minus the
+    /// gradient of `Φ` in the velocities (central differences of
+    /// [`Assembler::potential`]), and the matrix holds `β²h²` times each
+    /// element's projected Hessian between its vertices.
+    #[test]
+    fn volume_terms_are_the_potentials_derivatives() {
+        let (system, x_tilde) = system();
+        let n = system.particle_count();
+        let beta_h = 0.02;
+        let pattern = Pattern::new(&system).unwrap();
+        let v: Vec<Vec3> = (0..n)
+            .map(|i| Vec3::new(0.3 * i as f64, -0.2, 0.1 * (i as f64).sin()))
+            .collect();
+        let v_tilde: Vec<Vec3> = (0..n)
+            .map(|i| Vec3::new(0.1, 0.2 * i as f64, 0.0))
+            .collect();
+        let positions = |v: &[Vec3]| -> Vec<Vec3> {
+            x_tilde.iter().zip(v).map(|(x, v)| x + beta_h * v).collect()
+        };
+        let x = positions(&v);
+        let inertia: Vec<Vec3> = (0..n)
+            .map(|i| -system.masses()[i] * (v[i] - v_tilde[i]))
+            .collect();
+        let mut assembler = Assembler::default();
+        let (mut a, mut jacobi) = (BlockMatrix::zeros(pattern.clone()), BlockJacobi::default());
+        let mut b = vec![Vec3::zeros(); n];
+        // The first linearisation freezes the damping directions at x.
+        let lin = Linearization {
+            positions: &x,
+            velocities: &v,
+            displacement: None,
+            inertia: &inertia,
+            beta_h,
+            compressed: CompressedSprings::Exact,
+            freeze_directions: true,
+        };
+        assembler
+            .assemble(&system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+            .unwrap();
+        let phi = |v: &[Vec3]| {
+            assembler
+                .potential(&system, &pattern, &positions(v), v, &v_tilde, beta_h)
+                .value
+        };
+        let h = 1e-6;
+        for i in 0..n {
+            for c in 0..3 {
+                let (mut plus, mut minus) = (v.clone(), v.clone());
+                plus[i][c] += h;
+                minus[i][c] -= h;
+                let numeric = (phi(&plus) - phi(&minus)) / (2.0 * h);
+                assert!(
+                    (numeric + b[i][c]).abs() < 1e-6 * (1.0 + numeric.abs()),
+                    "∂Φ/∂v[{i}][{c}] = {numeric}, assembled −b = {}",
+                    -b[i][c]
+                );
+            }
+        }
+        let w: Vec<Vec3> = (0..n)
+            .map(|i| Vec3::new(1.0, -0.5 * i as f64, 0.25 + i as f64))
+            .collect();
+        let mut with = vec![Vec3::zeros(); n];
+        a.apply(&w, &mut with);
+        let mut springs_only = a.clone();
+        springs_only.clear_extra();
+        let mut without = vec![Vec3::zeros(); n];
+        springs_only.apply(&w, &mut without);
+        let mut expected = vec![Vec3::zeros(); n];
+        for t in system.tets() {
+            let hessian = t.derivatives(&x, true).hessian;
+            for (p, &i) in t.vertices.iter().enumerate() {
+                for (q, &j) in t.vertices.iter().enumerate() {
+                    expected[i] +=
+                        beta_h * beta_h * hessian.fixed_view::<3, 3>(3 * p, 3 * q) * w[j];
+                }
+            }
+        }
+        for i in 0..n {
+            assert!(
+                (with[i] - without[i] - expected[i]).norm() < 1e-9 * expected[i].norm().max(1.0)
+            );
         }
     }
 }

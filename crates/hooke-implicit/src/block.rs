@@ -31,6 +31,20 @@ impl SymBlock {
         ])
     }
 
+    /// The symmetric part `½(m + mᵀ)` of `m`.
+    #[must_use]
+    pub fn symmetric_part(m: &Mat3) -> Self {
+        let s = 0.5 * (m + m.transpose());
+        Self([
+            s[(0, 0)],
+            s[(0, 1)],
+            s[(0, 2)],
+            s[(1, 1)],
+            s[(1, 2)],
+            s[(2, 2)],
+        ])
+    }
+
     /// `M v`.
     #[inline]
     #[must_use]

@@ -11,7 +11,10 @@
 //! ```
 //!
 //! `wᵢ = 1/√mᵢ` (zero for pinned particles), valid in every state because a
-//! spring's clamped stiffness block has norm at most `k`. A solve with
+//! spring's clamped stiffness block has norm at most `k`. A volume element
+//! adds its Hessian at rest, `κ V₀ ∇J ∇Jᵀ`, the same way,
+//! `wₐ Σ_b κ V₀ |∇ₐJ| |∇_bJ| w_b` at each vertex `a` (its Hessian grows
+//! with the deformation, so this one holds near rest only). A solve with
 //! `κ(h) ≫ 1/ε` cannot see the inertia of the stiff system's soft modes (at
 //! 10¹² N/m, 0.1 mg particles and 1 s steps, `κ ≈ 10¹⁷`): its Newton steps
 //! carry rounding errors as large as the motion. Steps are therefore cut
@@ -40,6 +43,17 @@ impl Rates {
             stiffness[s.j] += s.stiffness * b * (a + b);
             damping[s.i] += s.damping * a * (a + b);
             damping[s.j] += s.damping * b * (a + b);
+        }
+        for t in system.tets() {
+            let gradient = t.volume_gradient(system.initial_positions());
+            let reach: f64 = gradient
+                .iter()
+                .zip(t.vertices)
+                .map(|(g, i)| g.norm() * w[i])
+                .sum();
+            for (g, i) in gradient.iter().zip(t.vertices) {
+                stiffness[i] += t.modulus * t.rest_volume * g.norm() * w[i] * reach;
+            }
         }
         Self {
             stiffness: stiffness.into_iter().fold(0.0, f64::max),

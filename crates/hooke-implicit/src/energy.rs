@@ -1,8 +1,15 @@
 //! The energy test of an implicit step: the mechanical energy of the free
-//! particles and the springs, and the work external agents did on them.
+//! particles, the springs and the volume elements, and the work external
+//! agents did on them.
 //!
-//! With `E = Σ_free ½ mᵢ|vᵢ|² − Σ_free mᵢ g·xᵢ + Σ_s ½ k (l − L)²` (gravity is
-//! part of the potential), the exact motion obeys `E(t + h) ≤ E(t) + W`,
+//! With
+//!
+//! ```text
+//! E = Σ_free ½ mᵢ|vᵢ|² − Σ_free mᵢ g·xᵢ + Σ_s ½ k (l − L)² + Σ_t ½ κ V₀ (J − 1)²
+//! ```
+//!
+//! (gravity and the volume elements are part of the potential), the exact
+//! motion obeys `E(t + h) ≤ E(t) + W`,
 //! where `W` is the work that scripted pins and moving obstacles did on the
 //! system during the step; dampers and friction only remove energy. A
 //! step is accepted when
@@ -13,7 +20,8 @@
 //!
 //! with `|E|` the sum of the terms' magnitudes and `ε` the machine epsilon:
 //! the rounding of the sums, nothing more. `W` is estimated by the
-//! trapezoid rule for pins, `½(∇ₚV(xₙ) + ∇ₚV(xₙ₊₁))·(xₚ,ₙ₊₁ − xₚ,ₙ)`, and as
+//! trapezoid rule for pins, `½(∇ₚV(xₙ) + ∇ₚV(xₙ₊₁))·(xₚ,ₙ₊₁ − xₚ,ₙ)` over the
+//! springs and elements at each scripted pin `p`, and as
 //! the contact forces times the obstacle's displacement for moving
 //! obstacles (the `contact` module, which also adds the barrier's energy to
 //! `E`); it is zero in the common case of fixed pins and resting obstacles.
@@ -38,7 +46,8 @@ pub(crate) fn energy(system: &System, x: &[Vec3], v: &[Vec3]) -> (f64, f64) {
         value += e;
         magnitude += e;
     }
-    (value, magnitude)
+    let volume = crate::assembly::volume_energy(system, x).0;
+    (value + volume, magnitude + volume)
 }
 
 /// The largest gain `E(x₁, v₁) − E(x₀, v₀)` a step may show from rounding.
@@ -47,7 +56,8 @@ pub(crate) fn rounding(magnitude: f64) -> f64 {
 }
 
 /// The work scripted pins did on the system over a step from `x0` to `x1`,
-/// by the trapezoid rule on the springs attached to them.
+/// by the trapezoid rule on the springs and volume elements attached to
+/// them.
 pub(crate) fn pin_work(system: &System, x0: &[Vec3], x1: &[Vec3]) -> f64 {
     if system.pin_paths().is_empty() {
         return 0.0;
@@ -63,6 +73,19 @@ pub(crate) fn pin_work(system: &System, x0: &[Vec3], x1: &[Vec3]) -> f64 {
             let f0 = sign * s.elastic_force(x0[a], x0[b]);
             let f1 = sign * s.elastic_force(x1[a], x1[b]);
             work -= 0.5 * (f0 + f1).dot(&(x1[p] - x0[p]));
+        }
+    }
+    for t in system.tets().iter().filter(|t| t.modulus > 0.0) {
+        let moving = |&p: &usize| system.pin_paths().iter().any(|(i, _)| *i == p);
+        if !t.vertices.iter().any(moving) {
+            continue;
+        }
+        // The elements' forces are minus ∇ₚV.
+        let (f0, f1) = (t.forces(x0), t.forces(x1));
+        for (a, p) in t.vertices.iter().enumerate() {
+            if moving(p) {
+                work -= 0.5 * (f0[a] + f1[a]).dot(&(x1[*p] - x0[*p]));
+            }
         }
     }
     work

@@ -38,6 +38,13 @@ use crate::amg::csr::Csr;
 /// `n × n` for `n` free particles) once and every iteration costs a local
 /// step and three triangular solve pairs.
 ///
+/// Volume elements ([`hooke_core::Tet`]) have no such splitting into a
+/// constant quadratic and a projection; their forces at the current
+/// iterate join `f_ext` in the global step. The fixed point is still the
+/// backward-Euler step; the matrix stays constant, so where the elements
+/// are stiffer than the springs the iteration converges slowly or not at
+/// all.
+///
 /// Pinned particles are removed unknowns: they move with their path's
 /// velocity (at rest for plain pins), and their springs' terms move to the
 /// right-hand side. Gravity is the external force; spring and air damping
@@ -51,6 +58,8 @@ pub struct FastMassSpring {
     out: StepBuffers,
     y: Vec<Vec3>,
     d: Vec<Vec3>,
+    /// The volume elements' forces at the current iterate.
+    volume: Vec<Vec3>,
 }
 
 /// The factorized `(M + h² L)_ff` of one system and step size.
@@ -94,6 +103,7 @@ impl FastMassSpring {
             out: StepBuffers::default(),
             y: Vec::new(),
             d: Vec::new(),
+            volume: Vec::new(),
         })
     }
 
@@ -113,6 +123,7 @@ impl Default for FastMassSpring {
             out: StepBuffers::default(),
             y: Vec::new(),
             d: Vec::new(),
+            volume: Vec::new(),
         }
     }
 }
@@ -205,6 +216,7 @@ impl Integrator for FastMassSpring {
             out,
             y,
             d,
+            volume,
         } = self;
         out.begin(Self::NAME, system, state, dt, [&mut *y])?;
         d.resize(system.springs().len(), Vec3::zeros());
@@ -237,11 +249,19 @@ impl Integrator for FastMassSpring {
                     Vec3::zeros()
                 };
             }
+            volume.clear();
+            volume.resize(x.len(), Vec3::zeros());
+            for t in system.tets().iter().filter(|t| t.modulus > 0.0) {
+                for (&i, f) in t.vertices.iter().zip(t.forces(x)) {
+                    volume[i] += f;
+                }
+            }
             for c in 0..3 {
                 let rhs = &mut prefactored.rhs;
                 for (i, &u) in prefactored.unknown.iter().enumerate() {
                     if u != u32::MAX {
-                        rhs[u as usize] = masses[i] * (y[i][c] + h2 * gravity[c]);
+                        rhs[u as usize] =
+                            masses[i] * (y[i][c] + h2 * gravity[c]) + h2 * volume[i][c];
                     }
                 }
                 for (s, ds) in system.springs().iter().zip(d.iter()) {

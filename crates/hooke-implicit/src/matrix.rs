@@ -40,22 +40,25 @@ use crate::vector::{MIN_CHUNK, PARALLEL_MIN_PARTICLES};
 /// even chunks run at once, each owning itself and its successor, then the
 /// odd ones.
 ///
-/// Contact adds terms beyond the springs' pattern: a block on the diagonal
-/// of a particle near an obstacle (kept in its diagonal block too) and a
-/// block between two particles of a close pair of surface primitives. The
-/// product adds them after the springs' terms; a matrix without contacts
-/// holds none.
+/// Contact and volume elements add terms beyond the springs' pattern: a
+/// block on the diagonal of a particle near an obstacle or in an element
+/// (kept in its diagonal block too), and a block between two particles of
+/// a close pair of surface primitives or of an element (a general 3 × 3
+/// block: an element's Hessian couples its vertices' coordinates
+/// unsymmetrically). The product adds them after the springs' terms; a
+/// matrix of springs alone holds none.
 #[derive(Debug, Clone)]
 pub struct BlockMatrix {
     pub(crate) pattern: Pattern,
     pub(crate) diagonal: Vec<SymBlock>,
     pub(crate) mass: Vec<f64>,
     pub(crate) springs: Vec<SymBlock>,
-    /// Contact blocks on the diagonal, `(i, B)`: `yᵢ += B xᵢ`.
-    pub(crate) contact_rows: Vec<(u32, SymBlock)>,
-    /// Contact blocks between particles, `(i, j, B)` with `i ≠ j`:
+    /// Contact and element blocks on the diagonal, `(i, B)`: `yᵢ += B xᵢ`.
+    pub(crate) extra_rows: Vec<(u32, SymBlock)>,
+    /// Contact and element blocks between particles, `(i, j, B)` with
+    /// `i ≠ j`:
     /// `yᵢ += B xⱼ`, `yⱼ += Bᵀ xᵢ`.
-    pub(crate) contact_pairs: Vec<(u32, u32, Mat3)>,
+    pub(crate) extra_pairs: Vec<(u32, u32, Mat3)>,
 }
 
 impl BlockMatrix {
@@ -69,34 +72,35 @@ impl BlockMatrix {
             diagonal: vec![SymBlock::default(); rows],
             mass: vec![0.0; rows],
             springs: vec![SymBlock::default(); slots],
-            contact_rows: Vec::new(),
-            contact_pairs: Vec::new(),
+            extra_rows: Vec::new(),
+            extra_pairs: Vec::new(),
         }
     }
 
-    /// Whether the matrix holds blocks between particles that no spring
-    /// joins (close pairs of surface primitives in contact).
+    /// Whether the matrix holds blocks between particles outside the
+    /// springs' pattern (close pairs of surface primitives in contact,
+    /// vertices of a volume element).
     #[must_use]
-    pub fn has_contact_pairs(&self) -> bool {
-        !self.contact_pairs.is_empty()
+    pub fn has_extra_pairs(&self) -> bool {
+        !self.extra_pairs.is_empty()
     }
 
-    /// Forgets the contact blocks (the diagonal blocks are overwritten by
-    /// the next assembly).
-    pub(crate) fn clear_contacts(&mut self) {
-        self.contact_rows.clear();
-        self.contact_pairs.clear();
+    /// Forgets the contact and element blocks (the diagonal blocks are
+    /// overwritten by the next assembly).
+    pub(crate) fn clear_extra(&mut self) {
+        self.extra_rows.clear();
+        self.extra_pairs.clear();
     }
 
-    /// Adds the contact block `B` (symmetric) to particle `i`'s diagonal.
-    pub(crate) fn add_contact_row(&mut self, i: usize, block: SymBlock) {
+    /// Adds the block `B` (symmetric) to particle `i`'s diagonal.
+    pub(crate) fn add_extra_row(&mut self, i: usize, block: SymBlock) {
         self.diagonal[i].add_assign(&block);
-        self.contact_rows.push((i as u32, block));
+        self.extra_rows.push((i as u32, block));
     }
 
-    /// Adds the contact block `B` at `(i, j)` and `Bᵀ` at `(j, i)`, `i ≠ j`.
-    pub(crate) fn add_contact_pair(&mut self, i: usize, j: usize, block: Mat3) {
-        self.contact_pairs.push((i as u32, j as u32, block));
+    /// Adds the block `B` at `(i, j)` and `Bᵀ` at `(j, i)`, `i ≠ j`.
+    pub(crate) fn add_extra_pair(&mut self, i: usize, j: usize, block: Mat3) {
+        self.extra_pairs.push((i as u32, j as u32, block));
     }
 
     /// The sparsity pattern.
@@ -148,7 +152,7 @@ impl BlockMatrix {
                 push(j, i, block);
             }
         }
-        for &(i, j, block) in &self.contact_pairs {
+        for &(i, j, block) in &self.extra_pairs {
             push(i as usize, j as usize, block);
             push(j as usize, i as usize, block.transpose());
         }
@@ -186,22 +190,22 @@ impl BlockMatrix {
                         let start = (2 * k + 1) * chunk;
                         self.product(start..(start + chunk).min(n), start, x, pair);
                     });
-                self.contact_product(x, y);
+                self.extra_product(x, y);
                 return;
             }
         }
         y.fill(Vec3::zeros());
         self.product(0..n, 0, x, y);
-        self.contact_product(x, y);
+        self.extra_product(x, y);
     }
 
-    /// Adds the contact blocks' terms to `y`.
-    fn contact_product(&self, x: &[Vec3], y: &mut [Vec3]) {
-        for (i, block) in &self.contact_rows {
+    /// Adds the contact and element blocks' terms to `y`.
+    fn extra_product(&self, x: &[Vec3], y: &mut [Vec3]) {
+        for (i, block) in &self.extra_rows {
             let i = *i as usize;
             y[i] += block.mul(x[i]);
         }
-        for &(i, j, block) in &self.contact_pairs {
+        for &(i, j, block) in &self.extra_pairs {
             let (i, j) = (i as usize, j as usize);
             y[i] += block * x[j];
             y[j] += block.tr_mul(&x[i]);

@@ -365,7 +365,7 @@ impl Topology {
     /// Renews the block-Jacobi inverses of the rows that contact terms
     /// added to since the last assembly.
     pub(crate) fn contacts_added(&mut self) {
-        for &(i, _) in &self.matrix.contact_rows {
+        for &(i, _) in &self.matrix.extra_rows {
             let i = i as usize;
             if let Some(inverse) = self.matrix.diagonal[i].inverse_if_positive_definite() {
                 self.jacobi.inverses[i] = inverse;
@@ -662,11 +662,11 @@ impl Solve<'_> {
             let factor = cholesky
                 .as_mut()
                 .expect("built with the topology for this solver");
-            if matrix.has_contact_pairs() {
-                // Blocks between particles in contact lie outside the
-                // factor's pattern: the factor of everything else (the
-                // contacts' diagonal blocks included) preconditions PCG on
-                // the whole matrix.
+            if matrix.has_extra_pairs() {
+                // Blocks between particles in contact or in a volume
+                // element lie outside the factor's pattern: the factor of
+                // everything else (their diagonal blocks included)
+                // preconditions PCG on the whole matrix.
                 factor
                     .factorize(matrix, filters)
                     .map_err(|particle| StepError::NotPositiveDefinite { time, particle })?;

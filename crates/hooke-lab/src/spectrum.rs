@@ -5,7 +5,9 @@
 //! particles obey `M u'' = −K u`, with `K` the stiffness matrix
 //! `Σ_s [[H_s, −H_s], [−H_s, H_s]]` (pinned particles' rows and columns
 //! removed, compressed springs' transverse stiffness clamped at zero as in
-//! the implicit solver). Its natural frequencies are `ω² = eig(M⁻¹K)`.
+//! the implicit solver), plus each volume element's Hessian at the initial
+//! state, `κ V₀ ∇J ∇Jᵀ` at rest. Its natural frequencies are
+//! `ω² = eig(M⁻¹K)`.
 //! [`omega_max`] finds the largest by power iteration on the symmetric
 //! matrix `M^(−1/2) K M^(−1/2)` (same eigenvalues): the Rayleigh quotient of
 //! the iterate rises monotonically to `ω_max²` from below. It stops when the
@@ -14,7 +16,7 @@
 //! (the largest absolute row sum), an upper bound on `ω_max²`, so a caller
 //! can see how tight the estimate is.
 
-use hooke_core::{CompressedSprings, System, Vec3};
+use hooke_core::{CompressedSprings, Mat12, System, Vec3};
 
 /// The power iteration's cap.
 pub const MAX_ITERATIONS: usize = 2000;
@@ -33,13 +35,27 @@ pub struct Spectrum {
 
 /// `y = M^(−1/2) K M^(−1/2) x` on the free particles (`x` and `y` zero on
 /// pinned ones).
-fn apply(system: &System, blocks: &[hooke_core::Mat3], scale: &[f64], x: &[Vec3], y: &mut [Vec3]) {
+fn apply(system: &System, blocks: &Blocks, scale: &[f64], x: &[Vec3], y: &mut [Vec3]) {
     y.iter_mut().for_each(|v| *v = Vec3::zeros());
-    for (s, h) in system.springs().iter().zip(blocks) {
+    for (s, h) in system.springs().iter().zip(&blocks.springs) {
         let d = h * (x[s.i] * scale[s.i] - x[s.j] * scale[s.j]);
         y[s.i] += d * scale[s.i];
         y[s.j] -= d * scale[s.j];
     }
+    for (t, h) in system.tets().iter().zip(&blocks.tets) {
+        for (a, &i) in t.vertices.iter().enumerate() {
+            for (b, &j) in t.vertices.iter().enumerate() {
+                y[i] += scale[i] * (h.fixed_view::<3, 3>(3 * a, 3 * b) * x[j]) * scale[j];
+            }
+        }
+    }
+}
+
+/// The springs' stiffness blocks and the volume elements' Hessians at the
+/// initial state.
+struct Blocks {
+    springs: Vec<hooke_core::Mat3>,
+    tets: Vec<Mat12>,
 }
 
 /// The largest natural frequency of `system` at its initial state (see
@@ -57,21 +73,37 @@ fn apply(system: &System, blocks: &[hooke_core::Mat3], scale: &[f64], x: &[Vec3]
 pub fn omega_max(system: &System) -> Spectrum {
     let n = system.particle_count();
     let x0 = system.initial_positions();
-    let blocks: Vec<_> = system
-        .springs()
-        .iter()
-        .map(|s| s.stiffness_block(x0[s.i], x0[s.j], CompressedSprings::Clamped))
-        .collect();
+    let blocks = Blocks {
+        springs: system
+            .springs()
+            .iter()
+            .map(|s| s.stiffness_block(x0[s.i], x0[s.j], CompressedSprings::Clamped))
+            .collect(),
+        tets: system
+            .tets()
+            .iter()
+            .map(|t| t.derivatives(x0, true).hessian)
+            .collect(),
+    };
     // M^(−1/2), zero on pinned particles so that they drop out.
     let scale: Vec<f64> = system.inverse_masses().iter().map(|&w| w.sqrt()).collect();
 
     let mut row_sums = vec![0.0; 3 * n];
-    for (s, h) in system.springs().iter().zip(&blocks) {
+    for (s, h) in system.springs().iter().zip(&blocks.springs) {
         for r in 0..3 {
             let row: f64 = (0..3).map(|c| h[(r, c)].abs()).sum();
             let (a, b) = (scale[s.i], scale[s.j]);
             row_sums[3 * s.i + r] += row * a * (a + b);
             row_sums[3 * s.j + r] += row * b * (a + b);
+        }
+    }
+    for (t, h) in system.tets().iter().zip(&blocks.tets) {
+        for (a, &i) in t.vertices.iter().enumerate() {
+            for r in 0..3 {
+                row_sums[3 * i + r] += (0..12)
+                    .map(|c| h[(3 * a + r, c)].abs() * scale[i] * scale[t.vertices[c / 3]])
+                    .sum::<f64>();
+            }
         }
     }
     let bound = row_sums.iter().copied().fold(0.0, f64::max);

@@ -146,10 +146,10 @@ impl Lagged {
         for k in 0..self.count {
             let (pk, wk) = (self.particles[k] as usize, self.weights[k]);
             b[pk] -= scale * wk * gradient;
-            a.add_contact_row(pk, symmetric(scale * wk * wk * block));
+            a.add_extra_row(pk, SymBlock::symmetric_part(&(scale * wk * wk * block)));
             for l in k + 1..self.count {
                 let pl = self.particles[l] as usize;
-                a.add_contact_pair(pk, pl, scale * wk * self.weights[l] * block);
+                a.add_extra_pair(pk, pl, scale * wk * self.weights[l] * block);
             }
         }
     }
@@ -164,19 +164,6 @@ pub(crate) fn tangent_basis(n: Vec3) -> [Vec3; 2] {
     };
     let t0 = n.cross(&helper).normalize();
     [t0, n.cross(&t0)]
-}
-
-/// The symmetric part of `m` as a [`SymBlock`].
-pub(crate) fn symmetric(m: Mat3) -> SymBlock {
-    let s = 0.5 * (m + m.transpose());
-    SymBlock([
-        s[(0, 0)],
-        s[(0, 1)],
-        s[(0, 2)],
-        s[(1, 1)],
-        s[(1, 2)],
-        s[(2, 2)],
-    ])
 }
 
 #[cfg(test)]

@@ -340,7 +340,7 @@ impl Contact {
         self.close_gaps(system, x, |i, gap, n| {
             let (_, slope, curvature) = barrier(gap, d_hat);
             b[i] -= kb * slope * n;
-            a.add_contact_row(
+            a.add_extra_row(
                 i,
                 crate::block::SymBlock::rank_one_plus_identity(kbb * curvature, n, 0.0),
             );

@@ -24,7 +24,8 @@ use hooke_core::collision::distance::{
 };
 use hooke_core::{Mat3, System, Vec3};
 
-use super::friction::{Lagged, symmetric};
+use super::friction::Lagged;
+use crate::block::SymBlock;
 use crate::matrix::BlockMatrix;
 
 /// How far beyond the contact distance `d̂` (plus thickness) a proximity
@@ -245,10 +246,10 @@ impl Pairs {
                 let g = term.gradient.fixed_rows::<3>(3 * k).into_owned();
                 b[p] -= kb * g;
                 let block: Mat3 = term.hessian.fixed_view::<3, 3>(3 * k, 3 * k).into_owned();
-                a.add_contact_row(p, symmetric(kbb * block));
+                a.add_extra_row(p, SymBlock::symmetric_part(&(kbb * block)));
                 for (l, &q) in pair.particles.iter().enumerate().skip(k + 1) {
                     let block: Mat3 = term.hessian.fixed_view::<3, 3>(3 * k, 3 * l).into_owned();
-                    a.add_contact_pair(p, q, kbb * block);
+                    a.add_extra_pair(p, q, kbb * block);
                 }
             }
         }
