@@ -116,3 +116,105 @@ fn every_integrator_turns_the_tet_back_to_its_rest_shape() {
         );
     }
 }
+
+/// The built-in jelly cube (6 × 6 × 6 cells of 5 cm) with its moduli
+/// divided by ten, its corner at height `drop`, with `connectivity`; the
+/// scene's own integrator: backward Euler at the library's defaults.
+fn soft_cube(connectivity: &str, drop: f64) -> Scene {
+    let text = include_str!("../scenes/jelly-cube.toml")
+        .replace("modulus = 300.0", "modulus = 30.0")
+        .replace("modulus = 150.0", "modulus = 15.0")
+        .replace("modulus = 100.0", "modulus = 10.0")
+        .replace(
+            "origin = [-0.15, 0.4, -0.15]",
+            &format!("origin = [-0.15, {drop}, -0.15]"),
+        )
+        .replace(
+            "connectivity = \"cubes\"",
+            &format!("connectivity = \"{connectivity}\""),
+        );
+    assert!(text.contains("modulus = 30.0") && text.contains(&format!("{drop}, -0.15")));
+    hooke::scenes::file::parse(&text, std::path::Path::new("soft-cube.toml")).unwrap()
+}
+
+/// How many of the lattice's 6 × 6 × 6 cells have a corner whose three
+/// edges into the cell, each pointing away from the corner, are left-handed
+/// (the cell turned inside out there).
+fn inverted_cells(x: &[Vec3]) -> usize {
+    let n = 6;
+    let at = |i: usize, j: usize, k: usize| x[(k * (n + 1) + j) * (n + 1) + i];
+    let mut inverted = 0;
+    for (i, j, k) in (0..n).flat_map(|i| (0..n).flat_map(move |j| (0..n).map(move |k| (i, j, k)))) {
+        let corner_inverted = (0..8).any(|c| {
+            let (a, b, d) = (c & 1, (c >> 1) & 1, (c >> 2) & 1);
+            let p = at(i + a, j + b, k + d);
+            let sign = |s: usize| if s == 0 { 1.0 } else { -1.0 };
+            let ex = sign(a) * (at(i + 1 - a, j + b, k + d) - p);
+            let ey = sign(b) * (at(i + a, j + 1 - b, k + d) - p);
+            let ez = sign(d) * (at(i + a, j + b, k + 1 - d) - p);
+            ex.cross(&ey).dot(&ez) <= 0.0
+        });
+        inverted += usize::from(corner_inverted);
+    }
+    inverted
+}
+
+/// Runs `scene` for its duration; returns the final state and the largest
+/// number of inverted elements in any step, asserting at every step that
+/// the energy stays at or below its start (gravity's work is part of the
+/// energy as its potential).
+fn run(scene: &Scene) -> (State, usize) {
+    let system = &scene.system;
+    let mut integrator = scene.integrator.build().unwrap();
+    let mut state = system.initial_state();
+    let start = system.energy(&state).unwrap().total();
+    let dt = scene.timing.dt;
+    let mut worst = 0;
+    for step in 0..scene.timing.steps() {
+        integrator.step(system, &mut state, dt).unwrap();
+        let energy = system.energy(&state).unwrap().total();
+        assert!(
+            energy <= start + 1e-9 * start.abs(),
+            "step {step}: energy {energy} J above its start {start} J"
+        );
+        worst = worst.max(system.inversion(state.positions()).unwrap().inverted);
+    }
+    (state, worst)
+}
+
+fn height(x: &[Vec3]) -> f64 {
+    let (low, high) = x
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.y), hi.max(p.y))
+        });
+    high - low
+}
+
+#[test]
+fn a_soft_cube_dropped_hard_recovers_its_shape() {
+    let scene = soft_cube("cubes", 1.5);
+    let (state, _) = run(&scene);
+    let x = state.positions();
+    let inversion = scene.system.inversion(x).unwrap();
+    assert!(height(x) >= 0.28, "height at 3 s {} m", height(x));
+    assert_eq!(
+        inversion.inverted, 0,
+        "smallest J {}",
+        inversion.smallest_ratio
+    );
+    assert_eq!(inverted_cells(x), 0);
+}
+
+#[test]
+fn a_soft_tet_lattice_placed_gently_never_inverts() {
+    let scene = soft_cube("tets-6", 0.001);
+    let (state, worst) = run(&scene);
+    assert_eq!(worst, 0);
+    assert_eq!(inverted_cells(state.positions()), 0);
+    assert!(
+        height(state.positions()) >= 0.28,
+        "height {}",
+        height(state.positions())
+    );
+}

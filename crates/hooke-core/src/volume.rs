@@ -39,7 +39,7 @@
 //! Hessian is positive semidefinite, equal to the exact one where that is,
 //! and costs one 3 × 3 SVD and one 3 × 3 symmetric eigensolve per element.
 
-use nalgebra::{Matrix3, SMatrix, SymmetricEigen};
+use nalgebra::{Matrix3, SMatrix};
 
 use crate::{Mat3, Vec3};
 
@@ -166,31 +166,32 @@ impl Tet {
         let (u, sigma, v) = signed_svd(&f);
         let [s0, s1, s2] = [sigma[0], sigma[1], sigma[2]];
         let mut hessian = Mat12::zeros();
-        let mut add_mode = |lambda: f64, d: Mat3| {
+        // Each mode as the matrix `Q = U D Vᵀ`, from the columns of U and V.
+        let (uc, vc) = (
+            [u.column(0), u.column(1), u.column(2)],
+            [v.column(0), v.column(1), v.column(2)],
+        );
+        let mut add_mode = |lambda: f64, q: Mat3| {
             if project && lambda <= 0.0 {
                 return;
             }
-            let w = self.spread(&(u * d * v.transpose()));
+            let w = self.spread(&q);
             let w = SMatrix::<f64, 12, 1>::from_iterator(w.iter().flat_map(|c| c.iter().copied()));
-            hessian += lambda * w * w.transpose();
+            hessian.ger(lambda, &w, &w, 1.0);
         };
         let r = std::f64::consts::FRAC_1_SQRT_2;
         for (a, b, c) in [(1, 2, 0), (2, 0, 1), (0, 1, 2)] {
-            let mut twist = Mat3::zeros();
-            twist[(a, b)] = -r;
-            twist[(b, a)] = r;
-            add_mode(slope * sigma[c], twist);
-            let mut flip = Mat3::zeros();
-            flip[(a, b)] = r;
-            flip[(b, a)] = r;
-            add_mode(-slope * sigma[c], flip);
+            let (ab, ba) = (uc[a] * vc[b].transpose(), uc[b] * vc[a].transpose());
+            add_mode(slope * sigma[c], r * (ba - ab));
+            add_mode(-slope * sigma[c], r * (ab + ba));
         }
         let g = Vec3::new(s1 * s2, s0 * s2, s0 * s1);
         let a = Matrix3::new(0.0, s2, s1, s2, 0.0, s0, s1, s0, 0.0);
-        let scaling = SymmetricEigen::new(stiffness * g * g.transpose() + slope * a);
+        let (values, vectors) = symmetric_eigen(stiffness * g * g.transpose() + slope * a);
         for k in 0..3 {
-            let w = scaling.eigenvectors.column(k);
-            add_mode(scaling.eigenvalues[k], Mat3::from_diagonal(&w));
+            let w = vectors.column(k);
+            let q = (0..3).fold(Mat3::zeros(), |q, i| q + w[i] * uc[i] * vc[i].transpose());
+            add_mode(values[k], q);
         }
         TetDerivatives {
             energy: 0.5 * stiffness * (j - 1.0) * (j - 1.0),
@@ -212,23 +213,92 @@ fn cofactor(f: &Mat3) -> Mat3 {
     Mat3::from_columns(&[c1.cross(&c2), c2.cross(&c0), c0.cross(&c1)])
 }
 
-/// `F = U diag(σ) Vᵀ` with `U` and `V` rotations: where a reflection is
-/// needed, the last singular value carries the sign (negative for
-/// `det F < 0`).
+/// `F = U diag(σ) Vᵀ` with `U` and `V` rotations and `σ₀ ≥ σ₁ ≥ |σ₂|`:
+/// where a reflection is needed, the last singular value carries the sign
+/// (negative for `det F < 0`).
+///
+/// `V` and `σ²` are the eigenpairs of `FᵀF`; `uₖ = F vₖ / σₖ` for the two
+/// largest, `u₂ = u₀ × u₁` (so `U` is a rotation) and `σ₂ = u₂ᵀ F v₂`, which
+/// keeps its sign and its accuracy for a nearly flat element, where
+/// `√(σ₂²)` would not. A degenerate `F` (an element collapsed onto a line
+/// or a point) gets any orthonormal completion.
 fn signed_svd(f: &Mat3) -> (Mat3, Vec3, Mat3) {
-    let svd = f.svd(true, true);
-    let mut u = svd.u.expect("requested");
-    let mut v = svd.v_t.expect("requested").transpose();
-    let mut sigma = svd.singular_values;
-    if u.determinant() < 0.0 {
-        u.column_mut(2).neg_mut();
-        sigma[2] = -sigma[2];
-    }
+    let (values, mut v) = symmetric_eigen(f.transpose() * f);
+    let mut order = [0, 1, 2];
+    order.sort_by(|&a, &b| values[b].total_cmp(&values[a]));
+    v = Mat3::from_columns(&order.map(|k| v.column(k).into_owned()));
     if v.determinant() < 0.0 {
         v.column_mut(2).neg_mut();
-        sigma[2] = -sigma[2];
     }
-    (u, sigma, v)
+    let (v0, v1, v2): (Vec3, Vec3, Vec3) =
+        (v.column(0).into(), v.column(1).into(), v.column(2).into());
+    let u0 = (f * v0).try_normalize(0.0).unwrap_or_else(Vec3::x);
+    let mut u1 = f * v1 - (f * v1).dot(&u0) * u0;
+    if u1.norm() <= 1e-300 {
+        u1 = orthogonal(u0);
+    }
+    let u1 = u1.normalize();
+    let u2 = u0.cross(&u1);
+    let sigma = Vec3::new((f * v0).dot(&u0), (f * v1).dot(&u1), (f * v2).dot(&u2));
+    (Mat3::from_columns(&[u0, u1, u2]), sigma, v)
+}
+
+/// A unit vector orthogonal to the unit vector `u`.
+fn orthogonal(u: Vec3) -> Vec3 {
+    let helper = if u.x.abs() < 0.9 {
+        Vec3::x()
+    } else {
+        Vec3::y()
+    };
+    u.cross(&helper).normalize()
+}
+
+/// The eigenvalues and eigenvectors (columns) of the symmetric `m`, by
+/// cyclic Jacobi rotations: each zeroes one off-diagonal entry, and the
+/// sweeps stop when the off-diagonal part is below 10⁻¹⁵ of the norm,
+/// after a few sweeps for a 3 × 3 matrix.
+fn symmetric_eigen(m: Mat3) -> (Vec3, Mat3) {
+    let mut a = m;
+    let mut v = Mat3::identity();
+    let scale = m.norm();
+    for _ in 0..20 {
+        let off = a[(0, 1)].powi(2) + a[(0, 2)].powi(2) + a[(1, 2)].powi(2);
+        if off.sqrt() <= 1e-15 * scale {
+            break;
+        }
+        for (p, q, r) in [(0, 1, 2), (0, 2, 1), (1, 2, 0)] {
+            let apq = a[(p, q)];
+            if apq == 0.0 {
+                continue;
+            }
+            // The rotation by θ with cot 2θ = (a_qq − a_pp) / 2a_pq,
+            // t = tan θ the smaller root, applied as `a ← Pᵀ a P`,
+            // `v ← v P` (Numerical Recipes, §11.1).
+            let theta = (a[(q, q)] - a[(p, p)]) / (2.0 * apq);
+            let t = if theta == 0.0 {
+                1.0
+            } else {
+                theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt())
+            };
+            let c = 1.0 / (t * t + 1.0).sqrt();
+            let s = t * c;
+            a[(p, p)] -= t * apq;
+            a[(q, q)] += t * apq;
+            a[(p, q)] = 0.0;
+            a[(q, p)] = 0.0;
+            let (arp, arq) = (a[(r, p)], a[(r, q)]);
+            a[(r, p)] = c * arp - s * arq;
+            a[(p, r)] = a[(r, p)];
+            a[(r, q)] = s * arp + c * arq;
+            a[(q, r)] = a[(r, q)];
+            for k in 0..3 {
+                let (vkp, vkq) = (v[(k, p)], v[(k, q)]);
+                v[(k, p)] = c * vkp - s * vkq;
+                v[(k, q)] = s * vkp + c * vkq;
+            }
+        }
+    }
+    (a.diagonal(), v)
 }
 
 #[cfg(test)]
@@ -277,6 +347,38 @@ mod tests {
         let mut y = *x;
         y[k / 3][k % 3] += by;
         y
+    }
+
+    /// The signed SVD and the symmetric eigensolver reproduce their
+    /// matrices, with rotations and orthonormal eigenvectors, for general,
+    /// inverted, flat and degenerate matrices.
+    #[test]
+    fn decompositions_reproduce_their_matrices() {
+        let mut rng = crate::collision::distance::tests::Rng::new(3);
+        let mut cases: Vec<Mat3> = (0..100)
+            .map(|_| Mat3::from_fn(|_, _| rng.uniform(-2.0, 2.0)))
+            .collect();
+        cases.push(Mat3::identity());
+        cases.push(Mat3::from_diagonal(&Vec3::new(1.0, 1.0, -1.0)));
+        cases.push(Mat3::from_diagonal(&Vec3::new(2.0, 0.5, 0.0)));
+        cases.push(Vec3::new(1.0, 2.0, 3.0) * Vec3::new(0.5, -1.0, 0.2).transpose());
+        cases.push(Mat3::zeros());
+        for f in cases {
+            let (u, sigma, v) = signed_svd(&f);
+            let scale = f.norm().max(1.0);
+            assert!((u * Mat3::from_diagonal(&sigma) * v.transpose() - f).norm() < 1e-12 * scale);
+            for r in [u, v] {
+                assert!((r.transpose() * r - Mat3::identity()).norm() < 1e-12);
+                assert!((r.determinant() - 1.0).abs() < 1e-12);
+            }
+            assert!(sigma[0] >= sigma[1] - 1e-12 && sigma[1] >= sigma[2].abs() - 1e-12);
+            assert!(sigma[2] * f.determinant() >= -1e-12);
+            let symmetric = f + f.transpose();
+            let (values, vectors) = symmetric_eigen(symmetric);
+            let rebuilt = vectors * Mat3::from_diagonal(&values) * vectors.transpose();
+            assert!((rebuilt - symmetric).norm() < 1e-12 * scale);
+            assert!((vectors.transpose() * vectors - Mat3::identity()).norm() < 1e-12);
+        }
     }
 
     #[test]
@@ -342,7 +444,7 @@ mod tests {
             let x = rest.map(|p| p + Vec3::from_fn(|_, _| rng.uniform(-0.6, 0.6)));
             let h = t.derivatives(&x, true).hessian;
             let exact = t.derivatives(&x, false).hessian;
-            let eigen = SymmetricEigen::new(h).eigenvalues;
+            let eigen = nalgebra::SymmetricEigen::new(h).eigenvalues;
             let scale = exact.amax();
             assert!(
                 eigen.min() >= -1e-10 * scale,
@@ -352,7 +454,7 @@ mod tests {
             );
             // Only the negative part is removed: the difference is negative
             // semidefinite.
-            let removed = SymmetricEigen::new(exact - h).eigenvalues;
+            let removed = nalgebra::SymmetricEigen::new(exact - h).eigenvalues;
             assert!(removed.max() <= 1e-10 * scale);
         }
         let at_rest = t.derivatives(&rest, true).hessian;

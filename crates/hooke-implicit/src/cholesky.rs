@@ -48,6 +48,8 @@ pub struct SparseCholesky {
     solve_memory: MemBuffer,
     rhs: Vec<f64>,
     par: Par,
+    /// Whether every block of the matrix last filled lay in the pattern.
+    complete: bool,
 }
 
 impl std::fmt::Debug for SparseCholesky {
@@ -127,6 +129,7 @@ impl SparseCholesky {
             solve_memory,
             rhs: vec![0.0; dofs],
             par,
+            complete: true,
         })
     }
 
@@ -211,7 +214,19 @@ impl SparseCholesky {
         }
     }
 
-    /// Copies the lower triangle of `S A S + I − S` into `values`.
+    /// Whether the last [`SparseCholesky::factorize`] factored the whole
+    /// matrix: every block beside the springs' (of a contact or a volume
+    /// element) joined two particles a spring joins too. Otherwise it
+    /// factored the matrix without the blocks that lie outside its
+    /// pattern, and [`SparseCholesky::solve_factored`] solves that one.
+    #[must_use]
+    pub fn is_complete(&self) -> bool {
+        self.complete
+    }
+
+    /// Copies the lower triangle of `S A S + I − S` into `values`: the
+    /// blocks outside the springs' pattern left out
+    /// ([`SparseCholesky::is_complete`]).
     fn fill(&mut self, a: &BlockMatrix, filters: &[Filter]) {
         let sandwich = |block: Mat3, left: Filter, right: Filter| match (left, right) {
             (Filter::Free, Filter::Free) => block,
@@ -236,6 +251,26 @@ impl SparseCholesky {
                     for r in 0..3 {
                         self.values[start as usize + r] = block[(r, c)];
                     }
+                }
+            }
+        }
+        self.complete = true;
+        for &(i, j, block) in &a.extra_pairs {
+            let (i, j) = (i as usize, j as usize);
+            let Some(t) = pattern.slot_between(i, j) else {
+                self.complete = false;
+                continue;
+            };
+            // The lower block (p, q), p > q: B at (i, j) or Bᵀ at (j, i).
+            let (p, q, block) = if i > j {
+                (i, j, block)
+            } else {
+                (j, i, block.transpose())
+            };
+            let block = sandwich(block, filters[p], filters[q]);
+            for (c, &start) in self.slot_columns[t].iter().enumerate() {
+                for r in 0..3 {
+                    self.values[start as usize + r] += block[(r, c)];
                 }
             }
         }

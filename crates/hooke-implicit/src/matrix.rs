@@ -77,14 +77,6 @@ impl BlockMatrix {
         }
     }
 
-    /// Whether the matrix holds blocks between particles outside the
-    /// springs' pattern (close pairs of surface primitives in contact,
-    /// vertices of a volume element).
-    #[must_use]
-    pub fn has_extra_pairs(&self) -> bool {
-        !self.extra_pairs.is_empty()
-    }
-
     /// Forgets the contact and element blocks (the diagonal blocks are
     /// overwritten by the next assembly).
     pub(crate) fn clear_extra(&mut self) {

@@ -133,6 +133,19 @@ impl Pattern {
         self.slot[spring] as usize
     }
 
+    /// The slot of the spring between particles `i` and `j`, if one joins
+    /// them.
+    #[must_use]
+    pub fn slot_between(&self, i: usize, j: usize) -> Option<usize> {
+        let (row, col) = (i.min(j), i.max(j));
+        let slots = self.upper(row);
+        let start = slots.start;
+        self.column[slots]
+            .binary_search(&u32::try_from(col).ok()?)
+            .ok()
+            .map(|k| start + k)
+    }
+
     /// The largest distance `|i − j|` between the ends of a spring: every
     /// block lies within this many block rows of the diagonal.
     #[must_use]
@@ -172,6 +185,9 @@ mod tests {
             assert_eq!(pattern.spring(pattern.slot(s)), s);
         }
         assert_eq!(pattern.bandwidth(), 3);
+        assert_eq!(pattern.slot_between(2, 0), Some(pattern.slot(0)));
+        assert_eq!(pattern.slot_between(1, 2), Some(pattern.slot(2)));
+        assert_eq!(pattern.slot_between(1, 3), None);
         assert_eq!(
             (0..4).map(|t| pattern.row_of(t)).collect::<Vec<_>>(),
             [0, 0, 0, 1]

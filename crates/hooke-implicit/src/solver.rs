@@ -662,14 +662,16 @@ impl Solve<'_> {
             let factor = cholesky
                 .as_mut()
                 .expect("built with the topology for this solver");
-            if matrix.has_extra_pairs() {
+            factor
+                .factorize(matrix, filters)
+                .map_err(|particle| StepError::NotPositiveDefinite { time, particle })?;
+            if factor.is_complete() {
+                factor.solve_factored(filters, b, x);
+            } else {
                 // Blocks between particles in contact or in a volume
-                // element lie outside the factor's pattern: the factor of
-                // everything else (their diagonal blocks included)
-                // preconditions PCG on the whole matrix.
-                factor
-                    .factorize(matrix, filters)
-                    .map_err(|particle| StepError::NotPositiveDefinite { time, particle })?;
+                // element that no spring joins lie outside the factor's
+                // pattern: the factor of everything else (their diagonal
+                // blocks included) preconditions PCG on the whole matrix.
                 x.fill(Vec3::zeros());
                 let settings = CONTACT_PCG.loosened(forcing);
                 let preconditioner = factor.preconditioner(filters);
@@ -677,10 +679,6 @@ impl Solve<'_> {
                     cg::solve(matrix, &preconditioner, filters, b, x, settings, workspace),
                     report,
                 )?;
-            } else {
-                factor
-                    .solve(matrix, filters, b, x)
-                    .map_err(|particle| StepError::NotPositiveDefinite { time, particle })?;
             }
         }
         Ok(())
