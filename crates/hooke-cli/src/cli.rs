@@ -79,6 +79,10 @@ struct RunArgs {
     /// Simulated seconds to run instead of the scene's own duration.
     #[arg(long, value_name = "SECONDS")]
     duration: Option<f64>,
+    /// Draw preview.png of the frame nearest this simulated time instead
+    /// of the frame where the bodies rest on the obstacles.
+    #[arg(long, value_name = "SECONDS")]
+    preview_time: Option<f64>,
     /// Show no progress bar.
     #[arg(long, short)]
     quiet: bool,
@@ -164,7 +168,9 @@ fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     {
         bar.set_style(style.progress_chars("=> "));
     }
-    let options = RunOptions::new(&args.out).gif(!args.no_gif);
+    let options = RunOptions::new(&args.out)
+        .gif(!args.no_gif)
+        .preview_time(args.preview_time);
     let mut progress = ObserveFn(|_: &System, _: &State, step: &StepInfo| {
         bar.set_position(step.index as u64);
         ControlFlow::Continue(())
@@ -235,6 +241,9 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
     if let Some(line) = contact_line(summary) {
         writeln!(out, "{line}")?;
     }
+    if let Some(line) = volume_line(summary) {
+        writeln!(out, "{line}")?;
+    }
     for warning in &summary.warnings {
         writeln!(out, "warning: {warning}")?;
     }
@@ -271,6 +280,16 @@ fn contact_line(summary: &Summary) -> Option<String> {
         });
     Some(format!(
         "contact: at most {pairs} close pairs, {closest}{end}"
+    ))
+}
+
+/// `volume: ...`, how far the volume elements were crushed, for a run of a
+/// system that has any.
+fn volume_line(summary: &Summary) -> Option<String> {
+    let inverted = summary.inverted_elements_max?;
+    let ratio = summary.volume_ratio_min.unwrap_or(f64::NAN);
+    Some(format!(
+        "volume: at most {inverted} elements inverted at once, smallest volume ratio {ratio:.3}"
     ))
 }
 

@@ -9,7 +9,8 @@ use crate::cli_error::CliError;
 use crate::runner::check_timing;
 
 /// What `scene` contains, one fact a line: its particles and springs, its
-/// bodies with what each draws, its obstacles, its collision surfaces (how
+/// bodies with what each draws and its volume elements with their modulus
+/// (see `hooke_scenes::Volume`), its obstacles, its collision surfaces (how
 /// many collide with themselves, their thickness and the contact
 /// distance), the integrator with its parameters and the timing with the
 /// number of steps and frames.
@@ -73,7 +74,7 @@ pub fn describe(scene: &Scene) -> Result<String, CliError> {
     }
     line("bodies", scene.bodies.len().to_string());
     for body in &scene.bodies {
-        line("", body_line(body));
+        line("", body_line(system, body));
     }
     line("obstacles", system.obstacles().len().to_string());
     for obstacle in system.obstacles() {
@@ -116,7 +117,7 @@ pub fn describe(scene: &Scene) -> Result<String, CliError> {
     Ok(text)
 }
 
-fn body_line(body: &SceneBody) -> String {
+fn body_line(system: &System, body: &SceneBody) -> String {
     let range = body.placement.range();
     let mut parts = vec![format!(
         "{} particles ({}..{})",
@@ -127,6 +128,19 @@ fn body_line(body: &SceneBody) -> String {
     }
     if !body.segments.is_empty() {
         parts.push(format!("{} segments", body.segments.len()));
+    }
+    let tets = system
+        .tets()
+        .get(body.placement.tet_range())
+        .unwrap_or_default();
+    if let Some(first) = tets.first() {
+        // A body's elements share one modulus (`Body::add_to`).
+        let modulus = if first.modulus > 0.0 {
+            format!("modulus {:.4e} Pa", first.modulus)
+        } else {
+            "modulus 0: volume energy off, inversion measured only".to_owned()
+        };
+        parts.push(format!("{} volume elements ({modulus})", tets.len()));
     }
     format!("{}: {}", body.name, parts.join(", "))
 }

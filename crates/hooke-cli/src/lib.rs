@@ -10,7 +10,7 @@
 //! | `frame_00000.ply`, `frame_00001.ply`, ... | binary little-endian PLY, one file per written frame (see `hooke-viz`) |
 //! | `preview.png` | an RGBA PNG picture of the frame where the bodies rest on the obstacles |
 //! | `animation.gif` | a looping GIF of the rendered frames |
-//! | `summary.json` | the [`Summary`]: what ran, how long each step took, solver work, energy, strain, how close the collision surfaces came, whether the state stayed finite |
+//! | `summary.json` | the [`Summary`]: what ran, how long each step took, solver work, energy, strain, how close the collision surfaces came, how many volume elements turned inside out, whether the state stayed finite |
 //!
 //! The pictures and files themselves are drawn and written by `hooke-viz`.
 //! This crate holds the `hooke` binary, so the library facade `hooke`
@@ -28,7 +28,7 @@
 //! arguments and output streams passed in, so it can be tested in-process.
 //!
 //! ```text
-//! hooke [run] [SCENE.toml] [--builtin NAME] [--out DIR] [--no-gif] [--duration S] [--quiet]
+//! hooke [run] [SCENE.toml] [--builtin NAME] [--out DIR] [--no-gif] [--duration S] [--preview-time S] [--quiet]
 //! hooke scenes                 # the built-in scenes
 //! hooke check SCENE.toml       # validate a scene file and say what it holds
 //! hooke stability [SCENE.toml] [--builtin NAME] [--methods A,B] [--stiffness VALUES]
@@ -73,6 +73,17 @@
 //! each other. Either prints what it did once, as `note: …`, and writes it
 //! in its report's `note`.
 //!
+//! # Volume elements
+//!
+//! For a scene with volume elements (its lattices, tet meshes and layered
+//! bodies, see `hooke_scenes::Volume`), `summary.json` also holds
+//! `inverted_elements_max`, the most elements inverted at once (volume
+//! ratio `J = V/V₀ ≤ 0`), and `volume_ratio_min`, the smallest `J`
+//! reached, over the initial state and every step ([`Summary`]); both are
+//! `null` without volume elements. `hooke run` prints them as `volume: at
+//! most N elements inverted at once, smallest volume ratio J`, and `hooke
+//! check` gives each body's elements and their modulus.
+//!
 //! # Errors
 //!
 //! Every command returns a [`CliError`] (wrapping the output layer's
@@ -89,6 +100,7 @@ mod runner;
 mod step_record;
 mod summary;
 mod surface_record;
+mod volume_record;
 
 pub use cli::{DEFAULT_SCENE, main, run_cli};
 pub use cli_error::CliError;

@@ -60,6 +60,21 @@ pub(crate) fn preview_frame(frames: &[FrameInfo]) -> Option<usize> {
         .map(|(i, _)| i)
 }
 
+/// The frame written nearest the simulated time `time` (the earlier of
+/// two as near); `None` when no frame was written.
+pub(crate) fn nearest_frame(frames: &[FrameInfo], time: f64) -> Option<usize> {
+    frames
+        .iter()
+        .enumerate()
+        .min_by(|(i, a), (j, b)| {
+            (a.time - time)
+                .abs()
+                .total_cmp(&(b.time - time).abs())
+                .then(i.cmp(j))
+        })
+        .map(|(i, _)| i)
+}
+
 /// The box the camera frames: the bodies at the preview frame and the
 /// finite obstacles there (their resting place); for a run without
 /// contacts, where nothing rests, every frame's bodies instead, so that
@@ -102,8 +117,10 @@ pub(crate) struct Pictures {
     pub wall: Duration,
 }
 
-/// Writes [`PREVIEW_FILE`] and, if asked for, [`ANIMATION_FILE`] into
-/// `dir` from the `frames` written there; `None` if there are none.
+/// Writes [`PREVIEW_FILE`] (of the [`preview_frame`], or the
+/// [`nearest_frame`] to [`RunOptions::preview_time`]) and, if asked for,
+/// [`ANIMATION_FILE`] into `dir` from the `frames` written there; `None`
+/// if there are none.
 ///
 /// The animation shows every `s`-th of the `n` frames written at
 /// `frame_rate`, `s = max(⌈n / MAX_GIF_FRAMES⌉, ⌈frame_rate / MAX_GIF_FPS⌉)`,
@@ -117,7 +134,11 @@ pub(crate) fn write_pictures(
     options: &RunOptions,
 ) -> Result<Option<Pictures>, OutputError> {
     let started = Instant::now();
-    let Some(preview) = preview_frame(frames) else {
+    let chosen = match options.preview_time {
+        Some(time) => nearest_frame(frames, time),
+        None => preview_frame(frames),
+    };
+    let Some(preview) = chosen else {
         return Ok(None);
     };
     let bounds = framed(system, frames, preview)
@@ -202,6 +223,15 @@ mod tests {
         assert_eq!(preview_frame(&run), Some(3));
         let tie = frames(&[0, 100, 100], &[0.0, 2.0, 2.0]);
         assert_eq!(preview_frame(&tie), Some(2));
+    }
+
+    #[test]
+    fn a_preview_time_picks_the_nearest_frame() {
+        let run = frames(&[0, 5, 9, 9], &[1.0, 0.0, 2.0, 3.0]);
+        assert_eq!(nearest_frame(&run, 1.2), Some(1));
+        assert_eq!(nearest_frame(&run, 1.5), Some(1)); // the earlier of two
+        assert_eq!(nearest_frame(&run, 10.0), Some(3));
+        assert_eq!(nearest_frame(&[], 1.0), None);
     }
 
     #[test]

@@ -20,6 +20,7 @@ use crate::pictures::write_pictures;
 use crate::step_record::StepRecord;
 use crate::summary::{Summary, median};
 use crate::surface_record::SurfaceRecord;
+use crate::volume_record::VolumeRecord;
 
 /// The file name of the run summary in the output directory.
 pub const SUMMARY_FILE: &str = "summary.json";
@@ -30,12 +31,16 @@ pub const PREVIEW_FILE: &str = "preview.png";
 pub const ANIMATION_FILE: &str = "animation.gif";
 
 /// Where a [`run`] writes and what.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct RunOptions {
     /// The output directory, created if missing.
     pub out: PathBuf,
     /// Whether to write [`ANIMATION_FILE`].
     pub gif: bool,
+    /// The simulated time, s, whose frame (the nearest written)
+    /// [`PREVIEW_FILE`] shows instead of the frame of the bodies at rest;
+    /// finite and not negative.
+    pub preview_time: Option<f64>,
     /// Width and height of [`PREVIEW_FILE`], pixels.
     pub preview_size: (u32, u32),
     /// Width and height of the animation's frames, pixels.
@@ -55,6 +60,7 @@ impl RunOptions {
         Self {
             out: out.into(),
             gif: true,
+            preview_time: None,
             preview_size: (960, 720),
             gif_size: (480, 360),
         }
@@ -70,6 +76,22 @@ impl RunOptions {
     pub fn gif(self, gif: bool) -> Self {
         Self { gif, ..self }
     }
+
+    /// The same options with the preview showing the frame nearest the
+    /// simulated time `time` in s (`None`: the frame of the bodies at
+    /// rest, see [`run`]).
+    ///
+    /// ```
+    /// let options = hooke_cli::RunOptions::new("hooke-out").preview_time(Some(3.0));
+    /// assert_eq!(options.preview_time, Some(3.0));
+    /// ```
+    #[must_use]
+    pub fn preview_time(self, time: Option<f64>) -> Self {
+        Self {
+            preview_time: time,
+            ..self
+        }
+    }
 }
 
 /// Runs `scene` and writes its output into `options.out`:
@@ -81,8 +103,9 @@ impl RunOptions {
 /// - [`PREVIEW_FILE`]: the frame that shows the bodies resting on the
 ///   obstacles — of the frames with at least half the run's most
 ///   particle–obstacle contacts, the one with the least kinetic energy
-///   (without contacts, the last frame) — recorded in
-///   [`Summary::preview_frame`];
+///   (without contacts, the last frame), or with
+///   [`RunOptions::preview_time`] the frame nearest that time — recorded
+///   in [`Summary::preview_frame`];
 /// - [`ANIMATION_FILE`]: the frames subsampled to at most
 ///   [`MAX_GIF_FRAMES`](hooke_viz::MAX_GIF_FRAMES) pictures that play in
 ///   about real time;
@@ -98,8 +121,9 @@ impl RunOptions {
 /// The run is a [`Simulation`] with observers: the frame writer, a record
 /// of every step's wall time and contacts, a record of how close the
 /// collision surfaces came after every step (see
-/// [`Summary::close_pairs_max`]), an [`EnergyLog`] and a [`StrainLog`]
-/// sampled at the written frames, and `progress`, the caller's (a progress
+/// [`Summary::close_pairs_max`]), a record of the volume elements
+/// inverted after every step ([`Summary::inverted_elements_max`]), an
+/// [`EnergyLog`] and a [`StrainLog`] sampled at the written frames, and `progress`, the caller's (a progress
 /// bar), called after every step. For a system with collision surfaces the
 /// last state's intersecting triangles are counted
 /// ([`Summary::intersecting_triangle_pairs`]). The wall time spent
@@ -116,7 +140,7 @@ impl RunOptions {
 /// # Errors
 ///
 /// [`CliError::InvalidTiming`] and [`CliError::Parameter`] for a scene that
-/// cannot be run, [`CliError::Output`] for bodies that cannot be meshed or
+/// cannot be run (or a preview time that is negative or not finite), [`CliError::Output`] for bodies that cannot be meshed or
 /// files that cannot be written, [`CliError::CreateDir`] and
 /// [`CliError::WriteSummary`] naming the path that failed.
 pub fn run(
@@ -126,6 +150,14 @@ pub fn run(
 ) -> Result<Summary, CliError> {
     let started = Instant::now();
     check_timing(&scene.timing)?;
+    if options
+        .preview_time
+        .is_some_and(|t| !(t.is_finite() && t >= 0.0))
+    {
+        return Err(CliError::InvalidTiming {
+            reason: "the preview time must be finite and non-negative",
+        });
+    }
     let system = &scene.system;
     let mut integrator = scene.integrator.build()?;
     let mesh = scene_mesh(scene)?;
@@ -138,6 +170,7 @@ pub fn run(
     let mut frames = FrameWriter::new(&options.out, mesh, CONTACT_DISTANCE * size);
     let mut record = StepRecord::default();
     let mut surfaces = SurfaceRecord::default();
+    let mut volumes = VolumeRecord::default();
     let (mut energy, mut strain) = (EnergyLog::default(), StrainLog::default());
     let mut budget = EnergyBudget::new(system);
     let mut state = system.initial_state();
@@ -145,6 +178,7 @@ pub fn run(
         .observe(1, &mut record)
         .observe(1, &mut budget)
         .observe(1, &mut surfaces)
+        .observe(1, &mut volumes)
         .observe(every, &mut frames)
         .observe(every, &mut energy)
         .observe(every, &mut strain)
@@ -226,6 +260,8 @@ pub fn run(
         smallest_distance: surfaces.smallest_distance,
         intersecting_triangle_pairs: (has_surfaces && finite_end)
             .then(|| intersecting_triangle_pairs(system.surfaces(), state.positions())),
+        inverted_elements_max: volumes.inverted_max,
+        volume_ratio_min: volumes.smallest_ratio,
         energy_initial: energies.first().map_or(f64::NAN, |s| s.energy.total()),
         energy_final: energy_of(system, &state),
         energy_max: energies

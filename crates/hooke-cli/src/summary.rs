@@ -127,6 +127,16 @@ pub struct Summary {
     /// tangled in itself or another. `None` without collision surfaces or
     /// for a last state that is not finite.
     pub intersecting_triangle_pairs: Option<usize>,
+    /// Most volume elements inverted at once — tets whose signed volume
+    /// ratio `J = V/V₀` is at most 0 (see `hooke_core::Tet`) — in the
+    /// initial state or after a step; `None` for a system without volume
+    /// elements (no lattice, tet mesh or layered body). Elements whose
+    /// volume energy is off (`volume = false`) are counted too.
+    pub inverted_elements_max: Option<usize>,
+    /// The smallest volume ratio `J = V/V₀` of a volume element over the
+    /// initial state and the state after every step: 1 at rest, below 0
+    /// once an element turned inside out; `None` without volume elements.
+    pub volume_ratio_min: Option<f64>,
     /// Energy of the initial state, J.
     pub energy_initial: f64,
     /// Energy of the last state, J.

@@ -1,43 +1,5 @@
 //! [`Tet`]: a volume element, the energy that keeps a tetrahedron's signed
 //! volume near its rest volume and pushes an inverted one back out.
-//!
-//! Springs know lengths, not volumes: a tetrahedron and its mirror image
-//! have the same edge lengths, so a spring body turned inside out is at
-//! rest. A volume element adds the energy
-//!
-//! ```text
-//! E = ½ κ V₀ (J − 1)²,   J = V / V₀ = det F,   F = Dₛ Dₘ⁻¹,
-//! ```
-//!
-//! with `V` the tetrahedron's signed volume, `V₀ > 0` its rest volume, `κ`
-//! the modulus (Pa, a bulk modulus) and `F` the deformation gradient that
-//! maps the rest edges `Dₘ = [X₁ − X₀, X₂ − X₀, X₃ − X₀]` to the current
-//! ones `Dₛ` (Teschner, Heidelberger, Müller & Gross, *A versatile and
-//! robust model for geometrically complex deformable solids*, 2004). It is
-//! a polynomial in the positions: finite and smooth for every `J`, a flat
-//! (`J = 0`) or inverted (`J < 0`) tetrahedron included, where its force
-//! `−κ V₀ (J − 1) ∇J` points toward positive volume (`∇J` is the faces'
-//! area-weighted normals divided by `3V₀`), unlike energies with `ln J`,
-//! which are infinite there. The springs already carry a body's shape and
-//! shear; the element carries the one thing they cannot tell, the sign and
-//! size of the volume.
-//!
-//! **Hessian.** `∇²E = κ V₀ (∇J ∇Jᵀ + (J − 1) ∇²J)` is indefinite away
-//! from rest. In terms of `F = U Σ Vᵀ` (`U`, `V` rotations, `σ₂` negative
-//! for an inverted element) it has closed-form eigenpairs (Smith, de Goes
-//! & Kim, *Analytic eigensystems for isotropic distortion energies*, 2019):
-//! with `E' = κ V₀ (J − 1)`,
-//!
-//! - three twist modes `U (eₐe_bᵀ − e_beₐᵀ) Vᵀ / √2` with eigenvalue
-//!   `E' σ_c` and three flip modes `U (eₐe_bᵀ + e_beₐᵀ) Vᵀ / √2` with
-//!   `−E' σ_c` (`{a, b, c} = {0, 1, 2}`);
-//! - three scaling modes `U diag(w) Vᵀ`, `w` the eigenvectors of the 3 × 3
-//!   matrix `κ V₀ g gᵀ + E' A`, `g = (σ₁σ₂, σ₀σ₂, σ₀σ₁)`,
-//!   `A = [[0, σ₂, σ₁], [σ₂, 0, σ₀], [σ₁, σ₀, 0]]`.
-//!
-//! [`Tet::hessian`] clamps the negative eigenvalues to zero: the projected
-//! Hessian is positive semidefinite, equal to the exact one where that is,
-//! and costs one 3 × 3 SVD and one 3 × 3 symmetric eigensolve per element.
 
 use nalgebra::{Matrix3, SMatrix};
 
@@ -48,7 +10,45 @@ use crate::{Mat3, Vec3};
 pub type Mat12 = SMatrix<f64, 12, 12>;
 
 /// A volume element: four particles, their rest volume and the modulus of
-/// the energy `½ κ V₀ (J − 1)²` (see the [module docs](self)).
+/// the energy `½ κ V₀ (J − 1)²`.
+///
+/// Springs know lengths, not volumes: a tetrahedron and its mirror image
+/// have the same edge lengths, so a spring body turned inside out is at
+/// rest. A volume element adds the energy
+///
+/// ```text
+/// E = ½ κ V₀ (J − 1)²,   J = V / V₀ = det F,   F = Dₛ Dₘ⁻¹,
+/// ```
+///
+/// with `V` the tetrahedron's signed volume, `V₀ > 0` its rest volume, `κ`
+/// the modulus (Pa, a bulk modulus) and `F` the deformation gradient that
+/// maps the rest edges `Dₘ = [X₁ − X₀, X₂ − X₀, X₃ − X₀]` to the current
+/// ones `Dₛ` (Teschner, Heidelberger, Müller & Gross, *A versatile and
+/// robust model for geometrically complex deformable solids*, 2004). It is
+/// a polynomial in the positions: finite and smooth for every `J`, a flat
+/// (`J = 0`) or inverted (`J < 0`) tetrahedron included, where its force
+/// `−κ V₀ (J − 1) ∇J` points toward positive volume (`∇J` is the faces'
+/// area-weighted normals divided by `3V₀`), unlike energies with `ln J`,
+/// which are infinite there. The springs already carry a body's shape and
+/// shear; the element carries the one thing they cannot tell, the sign and
+/// size of the volume.
+///
+/// **Hessian.** `∇²E = κ V₀ (∇J ∇Jᵀ + (J − 1) ∇²J)` is indefinite away
+/// from rest. In terms of `F = U Σ Vᵀ` (`U`, `V` rotations, `σ₂` negative
+/// for an inverted element) it has closed-form eigenpairs (Smith, de Goes
+/// & Kim, *Analytic eigensystems for isotropic distortion energies*, 2019):
+/// with `E' = κ V₀ (J − 1)`,
+///
+/// - three twist modes `U (eₐe_bᵀ − e_beₐᵀ) Vᵀ / √2` with eigenvalue
+///   `E' σ_c` and three flip modes `U (eₐe_bᵀ + e_beₐᵀ) Vᵀ / √2` with
+///   `−E' σ_c` (`{a, b, c} = {0, 1, 2}`);
+/// - three scaling modes `U diag(w) Vᵀ`, `w` the eigenvectors of the 3 × 3
+///   matrix `κ V₀ g gᵀ + E' A`, `g = (σ₁σ₂, σ₀σ₂, σ₀σ₁)`,
+///   `A = [[0, σ₂, σ₁], [σ₂, 0, σ₀], [σ₁, σ₀, 0]]`.
+///
+/// [`Tet::derivatives`] clamps the negative eigenvalues to zero: the projected
+/// Hessian is positive semidefinite, equal to the exact one where that is,
+/// and costs one 3 × 3 SVD and one 3 × 3 symmetric eigensolve per element.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tet {
     /// The four particles, ordered so that the rest volume is positive.

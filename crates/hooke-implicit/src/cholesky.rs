@@ -246,7 +246,8 @@ impl SparseCholesky {
         for q in 0..pattern.rows() {
             for t in pattern.upper(q) {
                 let p = pattern.column(t);
-                let block = sandwich(-a.springs[t].to_mat3(), filters[p], filters[q]);
+                // The slot's block at (q, p), transposed to the lower (p, q).
+                let block = sandwich(a.slot_block(t).transpose(), filters[p], filters[q]);
                 for (c, &start) in self.slot_columns[t].iter().enumerate() {
                     for r in 0..3 {
                         self.values[start as usize + r] = block[(r, c)];
@@ -254,26 +255,7 @@ impl SparseCholesky {
                 }
             }
         }
-        self.complete = true;
-        for &(i, j, block) in &a.extra_pairs {
-            let (i, j) = (i as usize, j as usize);
-            let Some(t) = pattern.slot_between(i, j) else {
-                self.complete = false;
-                continue;
-            };
-            // The lower block (p, q), p > q: B at (i, j) or Bᵀ at (j, i).
-            let (p, q, block) = if i > j {
-                (i, j, block)
-            } else {
-                (j, i, block.transpose())
-            };
-            let block = sandwich(block, filters[p], filters[q]);
-            for (c, &start) in self.slot_columns[t].iter().enumerate() {
-                for r in 0..3 {
-                    self.values[start as usize + r] += block[(r, c)];
-                }
-            }
-        }
+        self.complete = a.extra_within_pattern();
     }
 }
 

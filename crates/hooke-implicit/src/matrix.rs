@@ -46,7 +46,10 @@ use crate::vector::{MIN_CHUNK, PARALLEL_MIN_PARTICLES};
 /// a close pair of surface primitives or of an element (a general 3 × 3
 /// block: an element's Hessian couples its vertices' coordinates
 /// unsymmetrically). The product adds them after the springs' terms; a
-/// matrix of springs alone holds none.
+/// matrix of springs alone holds none. The diagonal blocks the
+/// preconditioners read also carry, for each element block between
+/// particles no spring joins, a bound that keeps them positive definite
+/// without it ([`crate::Assembler`]).
 #[derive(Debug, Clone)]
 pub struct BlockMatrix {
     pub(crate) pattern: Pattern,
@@ -59,6 +62,14 @@ pub struct BlockMatrix {
     /// `i ≠ j`:
     /// `yᵢ += B xⱼ`, `yⱼ += Bᵀ xᵢ`.
     pub(crate) extra_pairs: Vec<(u32, u32, Mat3)>,
+    /// Per slot (empty until a block between particles a spring joins is
+    /// added): the sum of those blocks at `(r, c)`, `r < c` the slot's row
+    /// and column, for the preconditioners and the Cholesky factor, which
+    /// read the matrix slot by slot.
+    pub(crate) extra_at_slots: Vec<Mat3>,
+    /// The number of blocks in `extra_pairs` between particles no spring
+    /// joins.
+    pub(crate) extra_outside: usize,
 }
 
 impl BlockMatrix {
@@ -74,6 +85,8 @@ impl BlockMatrix {
             springs: vec![SymBlock::default(); slots],
             extra_rows: Vec::new(),
             extra_pairs: Vec::new(),
+            extra_at_slots: Vec::new(),
+            extra_outside: 0,
         }
     }
 
@@ -82,6 +95,8 @@ impl BlockMatrix {
     pub(crate) fn clear_extra(&mut self) {
         self.extra_rows.clear();
         self.extra_pairs.clear();
+        self.extra_at_slots.fill(Mat3::zeros());
+        self.extra_outside = 0;
     }
 
     /// Adds the block `B` (symmetric) to particle `i`'s diagonal.
@@ -93,6 +108,15 @@ impl BlockMatrix {
     /// Adds the block `B` at `(i, j)` and `Bᵀ` at `(j, i)`, `i ≠ j`.
     pub(crate) fn add_extra_pair(&mut self, i: usize, j: usize, block: Mat3) {
         self.extra_pairs.push((i as u32, j as u32, block));
+        match self.pattern.slot_between(i, j) {
+            Some(t) => {
+                if self.extra_at_slots.is_empty() {
+                    self.extra_at_slots = vec![Mat3::zeros(); self.pattern.slots()];
+                }
+                self.extra_at_slots[t] += if i < j { block } else { block.transpose() };
+            }
+            None => self.extra_outside += 1,
+        }
     }
 
     /// The sparsity pattern.
@@ -111,6 +135,23 @@ impl BlockMatrix {
     #[must_use]
     pub fn diagonal(&self, i: usize) -> Mat3 {
         self.diagonal[i].to_mat3()
+    }
+
+    /// The block at `(r, c)`, `r < c`, of the slot `t` joining particles
+    /// `r` and `c`: `−K_s` of its spring plus the contact and element
+    /// blocks between the two.
+    pub(crate) fn slot_block(&self, t: usize) -> Mat3 {
+        let spring = -self.springs[t].to_mat3();
+        match self.extra_at_slots.get(t) {
+            Some(extra) => spring + extra,
+            None => spring,
+        }
+    }
+
+    /// Whether every contact and element block between particles lies in
+    /// the springs' pattern.
+    pub(crate) fn extra_within_pattern(&self) -> bool {
+        self.extra_outside == 0
     }
 
     /// The block `K_s` of spring `s`; the matrix holds `−K_s` at `(i, j)` and

@@ -1,6 +1,6 @@
-//! [`Body`]: what every builder produces — particles, springs, pins, the
-//! surface to draw and how it collides — and its [`Placement`] in a
-//! system.
+//! [`Body`]: what every builder produces — particles, springs, volume
+//! elements, pins, the surface to draw and how it collides — and its
+//! [`Placement`] in a system.
 
 use std::ops::Range;
 
@@ -8,6 +8,7 @@ use hooke_core::{System, SystemBuilder, Vec3};
 
 use crate::error::{SceneError, finite_vector};
 use crate::spring::{BodySpring, Family};
+use crate::volume::{self, Volume};
 
 /// A deformable body described as particles and springs, ready to go into a
 /// [`SystemBuilder`] alone or beside other bodies.
@@ -22,11 +23,18 @@ use crate::spring::{BodySpring, Family};
 /// or a [`Shell`](crate::Shell), without for the volumetric
 /// [`Lattice`](crate::Lattice), [`Solid`](crate::Solid) and
 /// [`Layered`](crate::Layered) bodies, thickness 0; a rope has no surface.
+///
+/// The volumetric bodies also have volume elements, tets on four of their
+/// particles whose energy keeps each tet's signed volume near its rest
+/// volume, with the modulus [`Volume`] sets (by default the bulk modulus
+/// of the body's springs); cloth, shells and ropes have none.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
     masses: Vec<f64>,
     positions: Vec<Vec3>,
     springs: Vec<BodySpring>,
+    tets: Vec<[usize; 4]>,
+    volume_modulus: f64,
     pins: Vec<usize>,
     triangles: Vec<[usize; 3]>,
     segments: Vec<[usize; 2]>,
@@ -53,13 +61,19 @@ pub struct Collision {
 }
 
 /// Where a body's particles went in a system: particles
-/// `first..first + count`.
+/// `first..first + count`, and volume elements (the system's
+/// [`tets`](hooke_core::System::tets)) `first_tet..first_tet + tet_count`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Placement {
     /// System index of the body's particle 0.
     pub first: usize,
     /// Number of particles of the body.
     pub count: usize,
+    /// System index of the body's first volume element (0 for a body
+    /// without any).
+    pub first_tet: usize,
+    /// Number of volume elements of the body.
+    pub tet_count: usize,
 }
 
 impl Placement {
@@ -67,6 +81,24 @@ impl Placement {
     #[must_use]
     pub fn range(&self) -> Range<usize> {
         self.first..self.first + self.count
+    }
+
+    /// The system indices of the body's volume elements.
+    ///
+    /// ```
+    /// use hooke_scenes::{Cloth, Lattice};
+    /// let cloth = Cloth::grid(2, 2).build()?;
+    /// let cube = Lattice::cubes(1, 1, 2).edges(1e3).build()?;
+    /// let mut b = hooke_core::SystemBuilder::new();
+    /// let (c, l) = (cloth.add_to(&mut b), cube.add_to(&mut b));
+    /// assert_eq!((c.tet_range(), l.tet_range()), (0..0, 0..12));
+    /// let system = b.build()?;
+    /// assert_eq!(system.tets()[l.tet_range()].len(), cube.tets().len());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn tet_range(&self) -> Range<usize> {
+        self.first_tet..self.first_tet + self.tet_count
     }
 
     /// The body's surface triangles with system indices, for writing the
@@ -123,11 +155,48 @@ impl Body {
             masses,
             positions,
             springs,
+            tets: Vec::new(),
+            volume_modulus: 0.0,
             pins,
             triangles,
             segments,
             collision,
         })
+    }
+
+    /// The body with volume elements `tets` (local indices, each oriented
+    /// with a positive volume at rest, none degenerate) of the modulus
+    /// `volume` gives.
+    pub(crate) fn with_tets(
+        mut self,
+        tets: Vec<[usize; 4]>,
+        volume: Volume,
+    ) -> Result<Self, SceneError> {
+        self.tets = tets;
+        self.volume(volume)
+    }
+
+    /// The body with its volume elements' modulus set by `volume` (see
+    /// [`Volume`]); a body without volume elements (cloth, shell, rope)
+    /// has none whatever this says.
+    ///
+    /// ```
+    /// use hooke_scenes::{Lattice, Volume};
+    /// let cube = Lattice::cubes(2, 2, 2).edges(1e3).build()?;
+    /// assert!(cube.volume_modulus() > 0.0); // the springs' bulk modulus
+    /// let soft = cube.volume(Volume::Modulus(50.0))?;
+    /// assert_eq!(soft.volume_modulus(), 50.0);
+    /// assert_eq!(soft.system([0.0; 3])?.tets()[0].modulus, 50.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`SceneError::InvalidValue`] for a [`Volume::Modulus`] that is
+    /// negative or not finite.
+    pub fn volume(mut self, volume: Volume) -> Result<Self, SceneError> {
+        let modulus = volume.modulus(&self.springs, self.rest_volume())?;
+        self.volume_modulus = if self.tets.is_empty() { 0.0 } else { modulus };
+        Ok(self)
     }
 
     /// The body with its surface colliding or not (see
@@ -240,6 +309,59 @@ impl Body {
         self.springs.iter().filter(move |s| s.family == family)
     }
 
+    /// The volume elements: tets on four local particles each, oriented so
+    /// that their signed volume at rest is positive (empty for cloth,
+    /// shells and ropes).
+    ///
+    /// ```
+    /// use hooke_scenes::{Cloth, Lattice, TetSplit};
+    /// assert_eq!(Lattice::cubes(2, 1, 1).build()?.tets().len(), 2 * 6);
+    /// assert_eq!(Lattice::tets(2, 1, 1, TetSplit::Five).build()?.tets().len(), 2 * 5);
+    /// assert!(Cloth::grid(3, 3).build()?.tets().is_empty());
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    #[must_use]
+    pub fn tets(&self) -> &[[usize; 4]] {
+        &self.tets
+    }
+
+    /// The modulus `κ` of the volume elements, Pa (0 without any, or with
+    /// [`Volume::Off`]).
+    #[must_use]
+    pub fn volume_modulus(&self) -> f64 {
+        self.volume_modulus
+    }
+
+    /// The rest volume `V` of the body, m³: the sum of its volume
+    /// elements' volumes in the initial shape (0 without any).
+    ///
+    /// ```
+    /// let cube = hooke_scenes::Lattice::cubes(3, 2, 1).size([0.3, 0.2, 0.1]).build()?;
+    /// assert!((cube.rest_volume() - 0.3 * 0.2 * 0.1).abs() < 1e-15);
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    #[must_use]
+    pub fn rest_volume(&self) -> f64 {
+        volume::rest_volume(&self.tets, &self.positions)
+    }
+
+    /// The bulk modulus of the body's springs under a uniform dilation,
+    /// `Σ k L² / (9 V)` in Pa over its springs (stiffness `k`, rest length
+    /// `L`), `V` its [`rest_volume`](Self::rest_volume): the modulus of
+    /// [`Volume::Auto`], which explains it; 0 without volume elements.
+    ///
+    /// ```
+    /// // One unit cube cell: 12 edges of 1 m, 12 face diagonals of √2 m.
+    /// let cell = hooke_scenes::Lattice::cubes(1, 1, 1).edges(90.0).face_diagonals(45.0).build()?;
+    /// let expected = (12.0 * 90.0 * 1.0 + 12.0 * 45.0 * 2.0) / 9.0;
+    /// assert!((cell.spring_bulk_modulus() - expected).abs() < 1e-9);
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    #[must_use]
+    pub fn spring_bulk_modulus(&self) -> f64 {
+        volume::spring_bulk_modulus(&self.springs, self.rest_volume())
+    }
+
     /// Pinned particles, in increasing order without repeats.
     #[must_use]
     pub fn pins(&self) -> &[usize] {
@@ -258,10 +380,12 @@ impl Body {
         &self.segments
     }
 
-    /// Adds the body's particles, springs and pins to `builder`, after
-    /// whatever it holds already, and its triangles as a collision surface
-    /// ([`SystemBuilder::surface`], with its [`Collision`] settings) unless
-    /// it has none or its surface collision is off; says where they went.
+    /// Adds the body's particles, springs, volume elements
+    /// ([`SystemBuilder::tet`], with its [`volume_modulus`](Self::volume_modulus))
+    /// and pins to `builder`, after whatever it holds already, and its
+    /// triangles as a collision surface ([`SystemBuilder::surface`], with
+    /// its [`Collision`] settings) unless it has none or its surface
+    /// collision is off; says where they went.
     ///
     /// ```
     /// use hooke_scenes::{Cloth, Rope};
@@ -282,17 +406,24 @@ impl Body {
             let index = builder.particle(mass, position);
             first.get_or_insert(index);
         }
-        let placement = Placement {
-            first: first.unwrap_or(0),
-            count: self.masses.len(),
-        };
-        let at = placement.first;
+        let at = first.unwrap_or(0);
         for s in &self.springs {
             builder
                 .spring(at + s.i, at + s.j, s.stiffness)
                 .rest_length(s.rest_length)
                 .damping(s.damping);
         }
+        let mut first_tet = None;
+        for t in &self.tets {
+            let index = builder.tet(t.map(|i| at + i), self.volume_modulus);
+            first_tet.get_or_insert(index);
+        }
+        let placement = Placement {
+            first: at,
+            count: self.masses.len(),
+            first_tet: first_tet.unwrap_or(0),
+            tet_count: self.tets.len(),
+        };
         for &p in &self.pins {
             builder.pin(at + p);
         }

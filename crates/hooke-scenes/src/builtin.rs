@@ -15,7 +15,7 @@ use crate::Scene;
 use crate::file::{ErrorKind, Meshes, SceneFileError, parse_with};
 
 /// Each scene: name, one-line description, and its file's text.
-const SCENES: [(&str, &str, &str); 12] = [
+const SCENES: [(&str, &str, &str); 13] = [
     (
         "stiff-cloth",
         "the default: a free, stiff 40 × 40 cloth falls onto a sphere on a floor and drapes over it (backward Euler, dt = 1/60 s)",
@@ -76,6 +76,11 @@ const SCENES: [(&str, &str, &str); 12] = [
         "two 25 × 25 cloths, one turned against the other, fall onto a sphere, the upper onto the lower (surfaces colliding)",
         include_str!("../../../scenes/two-cloths.toml"),
     ),
+    (
+        "soft-cube",
+        "two soft jelly cubes dropped from 1.5 m, one with the default volume energy (it recovers), one with springs only (it can stay inverted)",
+        include_str!("../../../scenes/soft-cube.toml"),
+    ),
 ];
 
 /// The meshes the built-in scenes use, by their path relative to the scene.
@@ -113,6 +118,7 @@ pub const NAMES: &[(&str, &str)] = &[
     (SCENES[9].0, SCENES[9].1),
     (SCENES[10].0, SCENES[10].1),
     (SCENES[11].0, SCENES[11].1),
+    (SCENES[12].0, SCENES[12].1),
 ];
 
 /// The built-in scene `name` (see [`NAMES`]); errors name it as

@@ -14,6 +14,9 @@ pub enum Element {
     Triangle(usize),
     /// Tetrahedron number `n` of a volume mesh.
     Tet(usize),
+    /// The prism of a [`crate::Layered`] body between triangle number `n`
+    /// of its surface mesh and the triangle's inner copy.
+    Prism(usize),
 }
 
 impl fmt::Display for Element {
@@ -21,6 +24,7 @@ impl fmt::Display for Element {
         match self {
             Self::Triangle(n) => write!(f, "triangle {n}"),
             Self::Tet(n) => write!(f, "tet {n}"),
+            Self::Prism(n) => write!(f, "the prism between triangle {n} and its inner copy"),
         }
     }
 }
@@ -92,12 +96,12 @@ pub enum SceneError {
         vertices: usize,
     },
     /// An element with zero area or volume (repeated or collinear/coplanar
-    /// corners).
-    #[error("{element} is degenerate (its {} is {measure:e})", match element { Element::Triangle(_) => "area", Element::Tet(_) => "volume" })]
+    /// corners; for a prism, a flat one of its three tets).
+    #[error("{element} is degenerate (its {} is {measure:e})", match element { Element::Triangle(_) => "area", Element::Tet(_) => "volume", Element::Prism(_) => "flat tet's volume" })]
     DegenerateElement {
         /// The element.
         element: Element,
-        /// Its area or unsigned volume.
+        /// Its area or unsigned volume (for a prism, that of its flat tet).
         measure: f64,
     },
     /// A tetrahedron whose orientation is opposite to that of tet 0.

@@ -6,9 +6,10 @@ use hooke_core::Vec3;
 use crate::body::Body;
 use crate::error::{SceneError, count, finite_vector, grid_points, positive};
 use crate::material::{Mass, Springs};
-use crate::mesh::{TET_EDGES, TetMesh, lump, signed_volume};
+use crate::mesh::{TET_EDGES, TetMesh, lump};
 use crate::spring::{Family, SpringSet, validate_families};
 use crate::tet_split::{TetSplit, cell_tets};
+use crate::volume::{Volume, positively_oriented};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Connectivity {
@@ -22,6 +23,14 @@ enum Connectivity {
 /// Springs are grouped by their span within a cell: [`Family::Edge`] along
 /// a cube edge, [`Family::FaceDiagonal`] across a face, and
 /// [`Family::BodyDiagonal`] through the cube; a family not set is absent.
+///
+/// Volume elements ([`Body::tets`], see [`Volume`]): every cube split into
+/// tetrahedra — the connectivity's own split for [`Lattice::tets`], and for
+/// [`Lattice::cubes`], whose springs are not on tets, the six-tet Kuhn
+/// split ([`TetSplit::Six`]) around each cube's diagonal from `(i, j, k)`
+/// to `(i + 1, j + 1, k + 1)`, which needs no alternation between
+/// neighbours: `6 nx ny nz` elements (`5 nx ny nz` for [`TetSplit::Five`])
+/// whose volumes sum to the box's.
 ///
 /// ```
 /// use hooke_scenes::{Family, Lattice, Springs, TetSplit};
@@ -42,6 +51,7 @@ pub struct Lattice {
     edges: Option<Springs>,
     face_diagonals: Option<Springs>,
     body_diagonals: Option<Springs>,
+    volume: Volume,
     pins: Vec<usize>,
 }
 
@@ -68,6 +78,7 @@ impl Lattice {
             edges: None,
             face_diagonals: None,
             body_diagonals: None,
+            volume: Volume::Auto,
             pins: Vec::new(),
         }
     }
@@ -149,6 +160,21 @@ impl Lattice {
         self
     }
 
+    /// The modulus of the volume elements (default [`Volume::Auto`]: the
+    /// bulk modulus `κ = Σ k L² / (9 V)` of the lattice's springs, see
+    /// [`Volume`] for why).
+    ///
+    /// ```
+    /// use hooke_scenes::{Lattice, Volume};
+    /// let cube = Lattice::cubes(2, 2, 2).edges(1e3).volume(Volume::Modulus(2e4)).build()?;
+    /// assert_eq!((cube.tets().len(), cube.volume_modulus()), (48, 2e4));
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    pub fn volume(mut self, volume: Volume) -> Self {
+        self.volume = volume;
+        self
+    }
+
     /// Pins particle `(k (ny + 1) + j)(nx + 1) + i`.
     ///
     /// ```
@@ -167,7 +193,8 @@ impl Lattice {
     /// # Errors
     /// [`SceneError`] naming the first bad field: a zero cell count, a size
     /// that is not finite and positive, an origin that is not finite, a
-    /// mass or spring parameter out of range, or a pin out of range.
+    /// mass, spring parameter or volume modulus out of range, or a pin out
+    /// of range.
     pub fn build(self) -> Result<Body, SceneError> {
         let [nx, ny, nz] = [
             count("lattice cells along x", self.cells[0], 1)?,
@@ -227,11 +254,10 @@ impl Lattice {
         for &cube in &cubes {
             let odd = cube.iter().sum::<usize>() % 2 == 1;
             for tet in cell_tets(split, odd) {
-                let mut tet = tet.map(|c| corner(cube, c));
-                if signed_volume(tet.map(|v| positions[v])) < 0.0 {
-                    tet.swap(2, 3);
-                }
-                mesh.tets.push(tet);
+                mesh.tets.push(positively_oriented(
+                    tet.map(|c| corner(cube, c)),
+                    &positions,
+                ));
             }
         }
         let (volumes, _) = mesh.checked_volumes()?;
@@ -281,6 +307,7 @@ impl Lattice {
             self.pins,
             (triangles, false),
             Vec::new(),
-        )
+        )?
+        .with_tets(mesh.tets, self.volume)
     }
 }

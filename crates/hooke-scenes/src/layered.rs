@@ -4,10 +4,11 @@
 use hooke_core::Vec3;
 
 use crate::body::Body;
-use crate::error::{SceneError, positive};
+use crate::error::{Element, SceneError, positive};
 use crate::material::{Mass, Springs};
-use crate::mesh::{MeshEdge, TriangleMesh, lump};
+use crate::mesh::{MeshEdge, TriangleMesh, is_flat, lump, signed_volume};
 use crate::spring::{Family, SpringSet, validate_families};
+use crate::volume::{Volume, positively_oriented};
 
 /// A surface of `n` vertices copied to an inner layer, `2n` particles:
 /// vertex `v` is particle `v`, its copy particle `n + v`, at
@@ -24,6 +25,15 @@ use crate::spring::{Family, SpringSet, validate_families};
 /// other end — so the layer pair resists shear as well as stretch, which a
 /// single surface of springs does not. The thickness should be smaller than
 /// the surface's radius of curvature, or the inner layer folds over itself.
+///
+/// Volume elements ([`Body::tets`], see [`Volume`]): the prism between each
+/// triangle `(a, b, c)` and its copy is cut into three tets. With the
+/// corners sorted by index, `v₀ < v₁ < v₂`, and `v'` the copy of `v`, they
+/// are `(v₀, v₁, v₂, v₀')`, `(v₁, v₂, v₀', v₁')` and `(v₂, v₀', v₁', v₂')`:
+/// the diagonal of the side face over the edge `(vᵢ, vⱼ)`, `vᵢ < vⱼ`,
+/// always joins `vⱼ` to `vᵢ'`, so two prisms sharing that face cut it
+/// alike and the tets fill the shell between the layers without gaps or
+/// overlaps.
 ///
 /// ```
 /// use hooke_scenes::{Family, Layered, TriangleMesh};
@@ -47,6 +57,7 @@ pub struct Layered {
     surface: Option<Springs>,
     links: Option<Springs>,
     cross: Option<Springs>,
+    volume: Volume,
     pins: Vec<usize>,
 }
 
@@ -61,6 +72,7 @@ impl Layered {
             surface: None,
             links: None,
             cross: None,
+            volume: Volume::Auto,
             pins: Vec::new(),
         }
     }
@@ -121,6 +133,24 @@ impl Layered {
         self
     }
 
+    /// The modulus of the prisms' volume elements (default
+    /// [`Volume::Auto`]: the bulk modulus `κ = Σ k L² / (9 V)` of the
+    /// body's springs, see [`Volume`] for why).
+    ///
+    /// ```
+    /// use hooke_scenes::{Layered, TriangleMesh, Volume};
+    /// let tri = TriangleMesh::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], [[0, 1, 2]]);
+    /// let body = Layered::new(tri, 0.1).surface(1e3).volume(Volume::Modulus(1e4)).build()?;
+    /// assert_eq!((body.tets().len(), body.volume_modulus()), (3, 1e4));
+    /// // The prism under a right triangle of area ½, 0.1 deep.
+    /// assert!((body.rest_volume() - 0.05).abs() < 1e-12);
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    pub fn volume(mut self, volume: Volume) -> Self {
+        self.volume = volume;
+        self
+    }
+
     /// Pins particle `particle` (`v` for a surface vertex, `n + v` for its
     /// copy).
     ///
@@ -143,8 +173,9 @@ impl Layered {
     /// [`SceneError`] for a thickness that is not finite and positive, a
     /// mesh with no triangles, a vertex that is not finite or not used, a
     /// triangle naming a missing vertex or of zero area, an edge shared by
-    /// more than two triangles, a vertex whose normal vanishes, a mass or
-    /// spring parameter out of range, or a pin out of range.
+    /// more than two triangles, a vertex whose normal vanishes, a prism
+    /// between the layers that is flat, a mass, spring parameter or volume
+    /// modulus out of range, or a pin out of range.
     pub fn build(self) -> Result<Body, SceneError> {
         let thickness = positive("layer thickness", self.thickness)?;
         let mesh = self.mesh;
@@ -192,6 +223,7 @@ impl Layered {
             .iter()
             .map(|&[a, b, c]| [n + a, n + c, n + b]);
         let triangles = mesh.triangles.iter().copied().chain(inner).collect();
+        let tets = prism_tets(&mesh.triangles, n, &positions)?;
         let springs = springs.into_springs();
         Body::from_parts(
             masses,
@@ -200,6 +232,42 @@ impl Layered {
             self.pins,
             (triangles, false),
             Vec::new(),
-        )
+        )?
+        .with_tets(tets, self.volume)
     }
+}
+
+/// The three tets of each triangle's prism between the surface (particles
+/// `0..n`) and its copy (`n..2n`), split by the vertex-index rule of
+/// [`Layered`], each oriented to a positive volume at `positions`.
+///
+/// # Errors
+/// [`SceneError::DegenerateElement`] naming the triangle whose prism has a
+/// flat tet.
+fn prism_tets(
+    triangles: &[[usize; 3]],
+    n: usize,
+    positions: &[Vec3],
+) -> Result<Vec<[usize; 4]>, SceneError> {
+    let mut tets = Vec::with_capacity(3 * triangles.len());
+    for (index, triangle) in triangles.iter().enumerate() {
+        let mut v = *triangle;
+        v.sort_unstable();
+        let [v0, v1, v2] = v;
+        for tet in [
+            [v0, v1, v2, n + v0],
+            [v1, v2, n + v0, n + v1],
+            [v2, n + v0, n + v1, n + v2],
+        ] {
+            let corners = tet.map(|p| positions[p]);
+            if is_flat(corners) {
+                return Err(SceneError::DegenerateElement {
+                    element: Element::Prism(index),
+                    measure: signed_volume(corners).abs(),
+                });
+            }
+            tets.push(positively_oriented(tet, positions));
+        }
+    }
+    Ok(tets)
 }

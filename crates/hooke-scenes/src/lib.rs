@@ -3,8 +3,9 @@
 //!
 //! Every builder is a consuming builder whose `build()` validates the whole
 //! description and returns a [`Body`]: particles (mass, position), springs
-//! (ends, stiffness, rest length, damping and [`Family`]), pins, and the
-//! surface triangles (or, for a rope, the segments) to draw. A body goes into
+//! (ends, stiffness, rest length, damping and [`Family`]), volume elements
+//! (tets, for the volumetric bodies), pins, and the surface triangles (or,
+//! for a rope, the segments) to draw. A body goes into
 //! a [`hooke_core::SystemBuilder`] with [`Body::add_to`], beside any other
 //! bodies, or becomes a system alone with [`Body::system`]. Rest lengths are
 //! the distances in the initial shape, so every body starts at rest.
@@ -43,15 +44,15 @@
 //!
 //! # Bodies
 //!
-//! | builder | particles | springs ([`Family`]) | surface |
-//! |---|---|---|---|
-//! | [`Cloth`] `n × m` (columns × rows) | `nm` | stretch `m(n−1) + n(m−1)`, shear `2(n−1)(m−1)`, bend `m(n−2) + n(m−2)` | `2(n−1)(m−1)` triangles |
-//! | [`Rope`], `s` segments | `s + 1` | stretch `s`, bend `s − 1` | none; `s` segments |
-//! | [`Lattice::cubes`] `a × b × c` | `(a+1)(b+1)(c+1)` | edge `a(b+1)(c+1) + …`, face diagonal `2[(a+1)bc + …]`, body diagonal `4abc` | `4(ab + bc + ca)` triangles |
-//! | [`Lattice::tets`] | as above | tet edges: cube edges, one diagonal per face, and for [`TetSplit::Six`] one body diagonal per cube | as above |
-//! | [`Solid`] (tet mesh) | vertices | edge: the unique tet edges | faces used by one tet |
-//! | [`Shell`] (triangle mesh) | vertices | edge: unique edges; bend: across each shared edge, joining the opposite corners | the triangles |
-//! | [`Layered`] | `2 ×` vertices | edge on both layers, link vertex–copy, cross to the copies of the neighbours | both layers |
+//! | builder | particles | springs ([`Family`]) | volume elements | surface |
+//! |---|---|---|---|---|
+//! | [`Cloth`] `n × m` (columns × rows) | `nm` | stretch `m(n−1) + n(m−1)`, shear `2(n−1)(m−1)`, bend `m(n−2) + n(m−2)` | none | `2(n−1)(m−1)` triangles |
+//! | [`Rope`], `s` segments | `s + 1` | stretch `s`, bend `s − 1` | none | none; `s` segments |
+//! | [`Lattice::cubes`] `a × b × c` | `(a+1)(b+1)(c+1)` | edge `a(b+1)(c+1) + …`, face diagonal `2[(a+1)bc + …]`, body diagonal `4abc` | `6abc` (six-tet split) | `4(ab + bc + ca)` triangles |
+//! | [`Lattice::tets`] | as above | tet edges: cube edges, one diagonal per face, and for [`TetSplit::Six`] one body diagonal per cube | `5abc` or `6abc`, the springs' tets | as above |
+//! | [`Solid`] (tet mesh) | vertices | edge: the unique tet edges | the tets | faces used by one tet |
+//! | [`Shell`] (triangle mesh) | vertices | edge: unique edges; bend: across each shared edge, joining the opposite corners | none | the triangles |
+//! | [`Layered`] | `2 ×` vertices | edge on both layers, link vertex–copy, cross to the copies of the neighbours | 3 per triangle (its prism) | both layers |
 //!
 //! - **Cloth** lies in the x–z plane ([`Plane::Horizontal`]) or hangs in the
 //!   x–y plane ([`Plane::Vertical`]), may be rotated about an axis and offset;
@@ -77,6 +78,28 @@
 //!   `x' = x − t n̂`, with springs along both layers, between each vertex and
 //!   its copy, and across to the copies of its neighbours. It gives a
 //!   surface mesh a volume-like stiffness without a tetrahedral mesh.
+//!
+//! # Volume
+//!
+//! Springs know lengths, not volumes: a body of springs and its mirror
+//! image have the same spring lengths, so one squashed flat or turned
+//! inside out can stay that way. The volumetric bodies — lattices, solids
+//! and layered bodies — therefore also carry volume elements: each tet adds
+//! the energy `½ κ V₀ (J − 1)²` of its signed volume ratio `J = V/V₀`
+//! ([`hooke_core::Tet`]), which pushes a flat or inverted tet back out. By
+//! default ([`Volume::Auto`]) `κ` is the bulk modulus of the body's own
+//! springs, `κ = Σ k L² / (9 V)`; [`Volume::Modulus`] sets it in Pa, and
+//! [`Volume::Off`] keeps the elements with modulus 0, only to measure how
+//! many turn inside out ([`hooke_core::System::inversion`]).
+//!
+//! ```
+//! use hooke_scenes::{Lattice, Volume};
+//! let jelly = Lattice::cubes(6, 6, 6).size([0.3; 3]).edges(6000.0).build()?;
+//! assert_eq!(jelly.tets().len(), 6 * 216);
+//! let springs_only = jelly.volume(Volume::Off)?.system([0.0, -9.81, 0.0])?;
+//! assert!(springs_only.tets().iter().all(|t| t.modulus == 0.0));
+//! # Ok::<(), hooke_scenes::SceneError>(())
+//! ```
 //!
 //! # Collision
 //!
@@ -144,6 +167,7 @@ mod solid;
 mod spring;
 mod tet_split;
 pub mod tetgen;
+mod volume;
 
 pub use body::{Body, Collision, Placement};
 pub use cloth::Cloth;
@@ -162,3 +186,4 @@ pub use shell::Shell;
 pub use solid::Solid;
 pub use spring::{BodySpring, Family};
 pub use tet_split::TetSplit;
+pub use volume::Volume;

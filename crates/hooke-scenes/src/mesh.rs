@@ -145,8 +145,7 @@ impl TetMesh {
         for (n, &t) in self.tets.iter().enumerate() {
             let corners = t.map(|i| self.vertices[i]);
             let volume = signed_volume(corners);
-            let longest = longest_edge(&corners);
-            if volume.abs() <= DEGENERATE * longest.powi(3) {
+            if is_flat(corners) {
                 return Err(SceneError::DegenerateElement {
                     element: Element::Tet(n),
                     measure: volume.abs(),
@@ -200,6 +199,13 @@ pub(crate) const TET_EDGES: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2
 /// `det(b − a, c − a, d − a) / 6`.
 pub(crate) fn signed_volume([a, b, c, d]: [Vec3; 4]) -> f64 {
     (b - a).cross(&(c - a)).dot(&(d - a)) / 6.0
+}
+
+/// Whether a tet with these corners is degenerate: its volume at most
+/// [`DEGENERATE`] times its longest edge cubed (the threshold
+/// [`hooke_core::Tet::at_rest`] rejects too).
+pub(crate) fn is_flat(corners: [Vec3; 4]) -> bool {
+    signed_volume(corners).abs() <= DEGENERATE * longest_edge(&corners).powi(3)
 }
 
 fn longest_edge(corners: &[Vec3]) -> f64 {

@@ -5,11 +5,14 @@ use crate::error::SceneError;
 use crate::material::{Mass, Springs};
 use crate::mesh::{TET_EDGES, TetMesh, lump};
 use crate::spring::{Family, SpringSet, validate_families};
+use crate::volume::{Volume, positively_oriented};
 
 /// A tetrahedral mesh made into a body: one particle per vertex,
 /// [`Family::Edge`] springs on the unique tet edges, each tet's mass
 /// (density × volume) split equally over its four corners, and the faces
-/// used by exactly one tet as its outward surface.
+/// used by exactly one tet as its outward surface. The mesh's tets are
+/// the body's volume elements ([`Body::tets`], reordered where needed to a
+/// positive volume), of the modulus [`Solid::volume`] sets.
 ///
 /// ```
 /// use hooke_scenes::{Mass, Solid, TetMesh};
@@ -29,6 +32,7 @@ pub struct Solid {
     mesh: TetMesh,
     mass: Mass,
     edges: Option<Springs>,
+    volume: Volume,
     pins: Vec<usize>,
 }
 
@@ -39,6 +43,7 @@ impl Solid {
             mesh,
             mass: Mass::Density(1000.0),
             edges: None,
+            volume: Volume::Auto,
             pins: Vec::new(),
         }
     }
@@ -70,6 +75,22 @@ impl Solid {
         self
     }
 
+    /// The modulus of the volume elements (default [`Volume::Auto`]: the
+    /// bulk modulus `κ = Σ k L² / (9 V)` of the edge springs, see
+    /// [`Volume`] for why).
+    ///
+    /// ```
+    /// use hooke_scenes::{Solid, TetMesh, Volume};
+    /// let tet = TetMesh::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], [[0, 1, 2, 3]]);
+    /// let solid = Solid::new(tet).edges(1e3).volume(Volume::Off).build()?;
+    /// assert_eq!((solid.tets(), solid.volume_modulus()), (&[[0, 1, 2, 3]][..], 0.0));
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    pub fn volume(mut self, volume: Volume) -> Self {
+        self.volume = volume;
+        self
+    }
+
     /// Pins vertex `particle`.
     ///
     /// ```
@@ -88,8 +109,8 @@ impl Solid {
     /// # Errors
     /// [`SceneError`] for a mesh with no tets, a vertex that is not finite
     /// or not used, a tet naming a missing vertex, of zero volume, or
-    /// oriented opposite to tet 0, a mass or spring parameter out of range,
-    /// or a pin out of range.
+    /// oriented opposite to tet 0, a mass, spring parameter or volume
+    /// modulus out of range, or a pin out of range.
     pub fn build(self) -> Result<Body, SceneError> {
         let mesh = self.mesh;
         let (volumes, sign) = mesh.checked_volumes()?;
@@ -104,6 +125,11 @@ impl Solid {
         let masses = lump(mesh.vertices.len(), &mesh.tets, &volumes, total);
         let triangles = mesh.boundary_faces(sign);
         let springs = springs.into_springs();
+        let tets = mesh
+            .tets
+            .iter()
+            .map(|&t| positively_oriented(t, &mesh.vertices))
+            .collect();
         Body::from_parts(
             masses,
             mesh.vertices,
@@ -111,6 +137,7 @@ impl Solid {
             self.pins,
             (triangles, false),
             Vec::new(),
-        )
+        )?
+        .with_tets(tets, self.volume)
     }
 }

@@ -80,9 +80,12 @@ pub(crate) fn diagonal_block(a: &BlockMatrix, filters: &[Filter], i: usize) -> M
     }
 }
 
-/// The block `Â_ij = −S_i K_s S_j` of the spring in `slot` between `i` and `j`.
+/// The block `Â_ij = S_i A_ij S_j` of the slot between `i` and `j`: the
+/// spring's `−K_s` and any contact or element block between the two.
 fn coupling_block(a: &BlockMatrix, filters: &[Filter], i: usize, j: usize, slot: usize) -> Mat3 {
-    sandwich(-a.springs[slot].to_mat3(), filters[i], filters[j])
+    let block = a.slot_block(slot);
+    let block = if i < j { block } else { block.transpose() };
+    sandwich(block, filters[i], filters[j])
 }
 
 /// `y = Â x` on flat vectors, through the block product: `y = S A S x +

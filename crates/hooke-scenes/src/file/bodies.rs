@@ -7,8 +7,8 @@ use toml::Spanned;
 
 use super::MAX_PARTICLES;
 use super::error::{SceneFileError, Source};
-use super::schema::{MovingPin, PinRef, SpringsTable};
-use super::values::{key, mass, non_negative, positive, springs};
+use super::schema::{MovingPin, PinRef, SpringsTable, VolumeSetting};
+use super::values::{key, mass, non_negative, positive, springs, volume};
 use crate::{Body, Cloth, Lattice, Layered, Mass, Rope, SceneError, Shell, Solid, Springs};
 
 /// Where a table is: its dotted key and its span in the file.
@@ -34,6 +34,8 @@ pub(crate) struct Shared {
     pub(crate) moving_pins: Vec<Spanned<MovingPin>>,
     /// `self_collision`.
     pub(crate) self_collision: Option<Spanned<bool>>,
+    /// `volume`.
+    pub(crate) volume: Option<Spanned<VolumeSetting>>,
     /// The surface's thickness, m, and its key: `thickness`, or
     /// `contact_thickness` where `thickness` means something else.
     pub(crate) thickness: (Option<Spanned<f64>>, &'static str),
@@ -53,6 +55,7 @@ macro_rules! shared {
             pins: $t.pins,
             moving_pins: $t.moving_pins,
             self_collision: $t.self_collision,
+            volume: $t.volume,
             thickness: ($t.$thickness, stringify!($thickness)),
         }
     };
@@ -84,8 +87,8 @@ body_builders!(Cloth, Rope, Lattice, Solid, Shell, Layered);
 
 /// Ends reading the body table at `at`: gives `builder` the table's `mass`
 /// or `density` (in `density_unit`), builds the body (an error pointing at
-/// `built_at`), gives it the table's collision settings and keeps its name
-/// and pins.
+/// `built_at`), gives it the table's collision and volume settings and
+/// keeps its name and pins.
 pub(crate) fn finish(
     src: &Source<'_>,
     at: &At,
@@ -109,6 +112,7 @@ pub(crate) fn finish(
         .build_body()
         .map_err(|e| src.scene(e, built_at.span.clone(), &built_at.key))?;
     let body = collision(src, at, body, &shared)?;
+    let body = volume_elements(src, at, body, shared.volume.as_ref())?;
     Ok(Built {
         body,
         names,
@@ -157,6 +161,31 @@ fn collision(
         body = body.thickness(non_negative(src, t, &key(&at.key, thickness_key), "m")?);
     }
     Ok(body)
+}
+
+/// `body` with the modulus of the table's `volume`; the key on a body
+/// without volume elements (cloth, rope, obj shell) is an error.
+fn volume_elements(
+    src: &Source<'_>,
+    at: &At,
+    body: Body,
+    setting: Option<&Spanned<VolumeSetting>>,
+) -> Result<Body, SceneFileError> {
+    let Some(setting) = setting else {
+        return Ok(body);
+    };
+    let volume_key = key(&at.key, "volume");
+    if body.tets().is_empty() {
+        return Err(src.invalid(
+            setting.span(),
+            volume_key,
+            "`volume` on a body without volume elements",
+            "no `volume`: only `lattice`, `tet-mesh` and `layered` bodies have volume elements (cloth, ropes and obj shells have none)",
+        ));
+    }
+    let volume = volume(src, setting, &volume_key)?;
+    body.volume(volume)
+        .map_err(|e| src.scene(e, setting.span(), &volume_key))
 }
 
 /// What every body table has besides its geometry and material.

@@ -5,7 +5,7 @@ use toml::Spanned;
 
 use super::bodies::{At, Built, PinNames, family, finish, shared, within_limit};
 use super::error::{SceneFileError, Source};
-use super::schema::{MovingPin, PinRef, Rotation, SpringsTable, Vector};
+use super::schema::{MovingPin, PinRef, Rotation, SpringsTable, Vector, VolumeSetting};
 use super::values::{count, key, rotation, vector};
 use crate::{Cloth, Plane};
 
@@ -32,6 +32,7 @@ pub(crate) struct ClothTable {
     #[serde(default)]
     moving_pins: Vec<Spanned<MovingPin>>,
     self_collision: Option<Spanned<bool>>,
+    volume: Option<Spanned<VolumeSetting>>,
     thickness: Option<Spanned<f64>>,
 }
 

@@ -9,7 +9,7 @@ use toml::Spanned;
 
 use super::bodies::{At, Built, PinNames, family, finish, scale, shared};
 use super::error::{SceneFileError, Source};
-use super::schema::{MovingPin, PinRef, SpringsTable, Vector};
+use super::schema::{MovingPin, PinRef, SpringsTable, Vector, VolumeSetting};
 use super::values::{key, positive, vector};
 use crate::{Layered, SceneError, Shell, Solid, TetMesh, TriangleMesh, obj, tetgen};
 
@@ -95,6 +95,7 @@ pub(crate) struct TetMeshTable {
     #[serde(default)]
     moving_pins: Vec<Spanned<MovingPin>>,
     self_collision: Option<Spanned<bool>>,
+    volume: Option<Spanned<VolumeSetting>>,
     thickness: Option<Spanned<f64>>,
 }
 
@@ -155,6 +156,7 @@ pub(crate) struct ObjTable {
     #[serde(default)]
     moving_pins: Vec<Spanned<MovingPin>>,
     self_collision: Option<Spanned<bool>>,
+    volume: Option<Spanned<VolumeSetting>>,
     thickness: Option<Spanned<f64>>,
 }
 
@@ -214,6 +216,7 @@ pub(crate) struct LayeredTable {
     #[serde(default)]
     moving_pins: Vec<Spanned<MovingPin>>,
     self_collision: Option<Spanned<bool>>,
+    volume: Option<Spanned<VolumeSetting>>,
     contact_thickness: Option<Spanned<f64>>,
 }
 

@@ -5,8 +5,8 @@
 //! the integrator (`[integrator]`), gravity and air damping (`[world]`), any
 //! number of bodies (`[[bodies]]`, each with a `type`: `cloth`, `rope`,
 //! `lattice`, `tet-mesh`, `layered` or `obj`), their pins, scripted pin
-//! motion and collision settings, and obstacles (`[[obstacles]]`, each with
-//! a `shape`). Every key,
+//! motion, collision settings and volume energy (`volume`), and obstacles
+//! (`[[obstacles]]`, each with a `shape`). Every key,
 //! its unit, default and constraints are documented in
 //! `docs/scene-format.md`; the shipped scenes in `scenes/` are complete
 //! examples.
@@ -161,11 +161,12 @@ pub(crate) fn parse_with(
                 .map(|s| s.map(|p| p + placement.first))
                 .collect(),
         });
-        placed.push((
+        placed.push(Placed {
             at,
-            placement.range(),
-            springs_before..springs_before + built.body.springs().len(),
-        ));
+            particles: placement.range(),
+            springs: springs_before..springs_before + built.body.springs().len(),
+            tets: placement.tet_range(),
+        });
     }
     let mut obstacle_places = Vec::new();
     for (k, value) in tables::tables(&src, obstacle_values, "obstacles")?
@@ -201,11 +202,20 @@ pub(crate) fn parse_with(
     })
 }
 
-/// A body, its particle range and its spring range in the system.
-type Placed = (At, Range<usize>, Range<usize>);
+/// A body and where its parts are in the system.
+struct Placed {
+    /// The body's table.
+    at: At,
+    /// Its particles.
+    particles: Range<usize>,
+    /// Its springs.
+    springs: Range<usize>,
+    /// Its volume elements.
+    tets: Range<usize>,
+}
 
 fn builder_springs(placed: &[Placed]) -> usize {
-    placed.last().map_or(0, |(_, _, springs)| springs.end)
+    placed.last().map_or(0, |p| p.springs.end)
 }
 
 /// `[world]`: gravity (default `[0, -9.81, 0]` m/s²), air damping
@@ -256,33 +266,25 @@ struct Places<'a> {
 /// A [`BuildError`] pointed at the body, obstacle or key it came from.
 fn build_error(src: &Source<'_>, error: BuildError, places: &Places<'_>) -> SceneFileError {
     let placed = places.bodies;
-    let by_particle = |p: usize| {
-        placed
-            .iter()
-            .find(|(_, particles, _)| particles.contains(&p))
-            .map(|(at, _, _)| at)
-    };
-    let by_spring = |s: usize| {
-        placed
-            .iter()
-            .find(|(_, _, springs)| springs.contains(&s))
-            .map(|(at, _, _)| at)
-    };
+    let by_particle = |p: usize| placed.iter().find(|b| b.particles.contains(&p));
+    let by_spring = |s: usize| placed.iter().find(|b| b.springs.contains(&s));
+    let by_tet = |t: usize| placed.iter().find(|b| b.tets.contains(&t));
     let at = match &error {
         BuildError::InvalidMass { particle, .. }
         | BuildError::NonFiniteParticle { particle, .. }
         | BuildError::PinOutOfRange { particle, .. }
-        | BuildError::InvalidPinPath { particle, .. } => by_particle(*particle),
+        | BuildError::InvalidPinPath { particle, .. } => by_particle(*particle).map(|b| &b.at),
         BuildError::SpringEndpointOutOfRange { spring, .. }
         | BuildError::SelfSpring { spring, .. }
         | BuildError::DuplicateSpring { spring, .. }
-        | BuildError::InvalidSpringParameter { spring, .. } => by_spring(*spring),
+        | BuildError::InvalidSpringParameter { spring, .. } => by_spring(*spring).map(|b| &b.at),
+        BuildError::InvalidTet { tet, .. } => by_tet(*tet).map(|b| &b.at),
         BuildError::InvalidObstacle { obstacle, .. } => places.obstacles.get(*obstacle),
         BuildError::InvalidSurface { surface, .. } => places
             .surfaces
             .get(*surface)
             .and_then(|&body| placed.get(body))
-            .map(|(at, _, _)| at),
+            .map(|b| &b.at),
         BuildError::InvalidContactDistance { .. } => places.contact_distance,
         BuildError::NonFiniteGravity { .. } | BuildError::InvalidAirDamping { .. } => None,
     };

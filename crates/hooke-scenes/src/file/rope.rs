@@ -5,7 +5,7 @@ use toml::Spanned;
 
 use super::bodies::{At, Built, PinNames, family, finish, shared, within_limit};
 use super::error::{SceneFileError, Source};
-use super::schema::{MovingPin, PinRef, SpringsTable, Vector};
+use super::schema::{MovingPin, PinRef, SpringsTable, Vector, VolumeSetting};
 use super::values::{count, key, non_negative, vector};
 use crate::Rope;
 
@@ -29,6 +29,7 @@ pub(crate) struct RopeTable {
     #[serde(default)]
     moving_pins: Vec<Spanned<MovingPin>>,
     self_collision: Option<Spanned<bool>>,
+    volume: Option<Spanned<VolumeSetting>>,
     thickness: Option<Spanned<f64>>,
 }
 

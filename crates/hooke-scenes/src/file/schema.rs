@@ -5,7 +5,8 @@
 use std::fmt;
 
 use serde::Deserialize;
-use serde::de::{self, Deserializer, IgnoredAny, Visitor};
+use serde::de::value::MapAccessDeserializer;
+use serde::de::{self, Deserializer, IgnoredAny, MapAccess, Visitor};
 use toml::Spanned;
 
 /// A 3-vector with its place in the file.
@@ -137,5 +138,46 @@ impl<'de> Deserialize<'de> for PinRef {
         }
 
         deserializer.deserialize_any(PinVisitor)
+    }
+}
+
+/// A body's `volume`: `true` (the default modulus, from the springs),
+/// `false` (no volume energy) or `{ modulus = κ }`.
+pub(crate) enum VolumeSetting {
+    /// `true` or `false`.
+    Switch(bool),
+    /// `{ modulus = κ }`, Pa.
+    Modulus(Spanned<f64>),
+}
+
+/// `{ modulus = κ }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct VolumeTable {
+    modulus: Spanned<f64>,
+}
+
+impl<'de> Deserialize<'de> for VolumeSetting {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct VolumeVisitor;
+
+        impl<'de> Visitor<'de> for VolumeVisitor {
+            type Value = VolumeSetting;
+
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("`true`, `false` or a table `{ modulus = κ }` (Pa)")
+            }
+
+            fn visit_bool<E: de::Error>(self, v: bool) -> Result<VolumeSetting, E> {
+                Ok(VolumeSetting::Switch(v))
+            }
+
+            fn visit_map<M: MapAccess<'de>>(self, map: M) -> Result<VolumeSetting, M::Error> {
+                let table = VolumeTable::deserialize(MapAccessDeserializer::new(map))?;
+                Ok(VolumeSetting::Modulus(table.modulus))
+            }
+        }
+
+        deserializer.deserialize_any(VolumeVisitor)
     }
 }

@@ -7,8 +7,8 @@ use nalgebra::Unit;
 use toml::Spanned;
 
 use super::error::{SceneFileError, Source};
-use super::schema::{Rotation, SpringsTable, Vector};
-use crate::{Mass, Springs, Stiffness};
+use super::schema::{Rotation, SpringsTable, Vector, VolumeSetting};
+use crate::{Mass, Springs, Stiffness, Volume};
 
 /// `prefix.field`, or `field` at the top level.
 pub(crate) fn key(prefix: &str, field: &str) -> String {
@@ -140,6 +140,22 @@ pub(crate) fn springs(
         None => 0.0,
     };
     Ok(Springs { stiffness, damping })
+}
+
+/// A body's `volume`: `true` is [`Volume::Auto`], `false`
+/// [`Volume::Off`], `{ modulus = κ }` a modulus, finite and ≥ 0 (Pa).
+pub(crate) fn volume(
+    src: &Source<'_>,
+    value: &Spanned<VolumeSetting>,
+    key: &str,
+) -> Result<Volume, SceneFileError> {
+    Ok(match value.get_ref() {
+        VolumeSetting::Switch(true) => Volume::Auto,
+        VolumeSetting::Switch(false) => Volume::Off,
+        VolumeSetting::Modulus(kappa) => {
+            Volume::Modulus(non_negative(src, kappa, &self::key(key, "modulus"), "Pa")?)
+        }
+    })
 }
 
 /// `mass` (kg) or `density`, at most one; `None` for the builder's default.
