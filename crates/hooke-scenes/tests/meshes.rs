@@ -1,25 +1,14 @@
 //! Bodies from meshes built in code: `Solid` (tets), `Shell` (triangles)
 //! and `Layered`, with hand-counted springs and every mesh error.
 
+mod common;
+
 use approx::assert_relative_eq;
+use common::two_tets;
 use hooke_core::Vec3;
 use hooke_scenes::{
     Element, Family, Layered, Mass, SceneError, Shell, Solid, Springs, TetMesh, TriangleMesh,
 };
-
-/// Two unit-corner tets sharing the face (1, 2, 3), on either side of it.
-fn two_tets() -> TetMesh {
-    TetMesh::new(
-        [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 1.0, 1.0],
-        ],
-        [[0, 1, 2, 3], [4, 1, 3, 2]],
-    )
-}
 
 #[test]
 fn solid_springs_on_unique_edges_and_mass_from_volumes() {

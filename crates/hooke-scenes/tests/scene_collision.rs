@@ -9,12 +9,12 @@ use std::path::Path;
 
 use approx::assert_relative_eq;
 use hooke_core::{Shape, Vec3};
-use hooke_scenes::file::{ErrorKind, SceneFileError};
+use hooke_scenes::file::ErrorKind;
 use hooke_scenes::{
     Cloth, Lattice, Layered, Rope, Shell, Solid, TetMesh, TetSplit, TriangleMesh, builtin,
 };
 
-use common::{CLOTH, parse};
+use common::{CLOTH, error_at, parse};
 
 /// A rope body table.
 const ROPE: &str = r#"
@@ -33,23 +33,6 @@ type = "lattice"
 cells = [2, 2, 2]
 edges = { stiffness = 100.0 }
 "#;
-
-/// Parses `text`, expects an error at `line` and `key`, and returns it.
-fn error_at(text: &str, line: usize, key: &str) -> SceneFileError {
-    let error = parse(text).expect_err("the scene should be rejected");
-    let message = error.to_string();
-    assert_eq!(error.file, Path::new("test.toml"), "{message}");
-    assert_eq!(
-        (error.line, error.key.as_str()),
-        (Some(line), key),
-        "{message}"
-    );
-    assert!(
-        message.starts_with(&format!("test.toml:{line}: {key}: ")),
-        "{message}"
-    );
-    error
-}
 
 #[test]
 fn cloth_and_shells_collide_with_themselves_and_volumes_do_not() {

@@ -8,29 +8,14 @@ use std::path::{Path, PathBuf};
 
 use hooke_core::{Path as Motion, Shape, Vec3};
 use hooke_implicit::{Implicit, Scheme};
-use hooke_scenes::file::{self, ErrorKind, SceneFileError};
+use hooke_scenes::file::{self, ErrorKind};
 use hooke_scenes::{IntegratorSpec, SolverSpec, builtin};
 
-use common::{CLOTH, parse};
+use common::{CLOTH, error_at, parse};
 
 /// The shipped scene files.
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
-}
-
-/// Parses `text`, expects an error, and checks its file, line and key, in
-/// the fields and in the message.
-fn error_at(text: &str, line: usize, key: &str) -> SceneFileError {
-    let error = parse(text).expect_err("the scene should be rejected");
-    let message = error.to_string();
-    assert_eq!(error.file, Path::new("test.toml"), "{message}");
-    assert_eq!(error.line, Some(line), "{message}");
-    assert_eq!(error.key, key, "{message}");
-    assert!(
-        message.starts_with(&format!("test.toml:{line}: {key}: ")),
-        "{message}"
-    );
-    error
 }
 
 #[test]

@@ -7,10 +7,10 @@ mod common;
 use std::path::Path;
 
 use approx::assert_relative_eq;
-use hooke_scenes::file::{ErrorKind, SceneFileError};
+use hooke_scenes::file::ErrorKind;
 use hooke_scenes::{Lattice, Springs, builtin};
 
-use common::{CLOTH, parse};
+use common::{CLOTH, error_at, parse};
 
 /// A 2 × 2 × 2 lattice body table whose line 7 is `extra`.
 fn lattice(extra: &str) -> String {
@@ -87,31 +87,15 @@ fn tet_meshes_and_layered_bodies_take_volume_too() {
     }
 }
 
-/// Parses `text`, expects an error at `line` and `key`, in the fields and
-/// the message, and returns the message.
-fn error_at(text: &str, line: usize, key: &str) -> (SceneFileError, String) {
-    let error = parse(text).expect_err("the scene should be rejected");
-    let message = error.to_string();
-    assert_eq!(
-        (error.line, error.key.as_str()),
-        (Some(line), key),
-        "{message}"
-    );
-    assert!(
-        message.starts_with(&format!("test.toml:{line}: {key}: ")),
-        "{message}"
-    );
-    (error, message)
-}
-
 #[test]
 fn a_bad_modulus_is_named_with_its_body_key_and_line() {
     for bad in ["-5.0", "nan", "inf", "-inf"] {
-        let (error, message) = error_at(
+        let error = error_at(
             &lattice(&format!("volume = {{ modulus = {bad} }}")),
             7,
             "bodies[0].volume.modulus",
         );
+        let message = error.to_string();
         assert!(
             matches!(*error.kind, ErrorKind::Invalid { .. }),
             "{message}"
@@ -128,16 +112,17 @@ fn a_bad_modulus_is_named_with_its_body_key_and_line() {
 
 #[test]
 fn a_malformed_volume_is_named_with_its_key_and_line() {
-    let (error, message) = error_at(
+    let error = error_at(
         &lattice("volume = { modulus = 5.0, damping = 1.0 }"),
         7,
         "bodies[0].volume.damping",
     );
+    let message = error.to_string();
     assert!(matches!(*error.kind, ErrorKind::Schema(_)), "{message}");
     assert!(message.contains("unknown field `damping`"), "{message}");
-    let (_, message) = error_at(&lattice("volume = \"soft\""), 7, "bodies[0].volume");
+    let message = error_at(&lattice("volume = \"soft\""), 7, "bodies[0].volume").to_string();
     assert!(message.contains("`true`, `false` or a table"), "{message}");
-    let (_, message) = error_at(&lattice("volume = {}"), 7, "bodies[0].volume.modulus");
+    let message = error_at(&lattice("volume = {}"), 7, "bodies[0].volume.modulus").to_string();
     assert!(message.contains("missing field `modulus`"), "{message}");
 }
 
@@ -146,7 +131,8 @@ fn volume_on_a_body_without_volume_elements_is_an_error() {
     let rope = "\n[[bodies]]\ntype = \"rope\"\nstart = [0, 0, 0]\nend = [1, 0, 0]\nsegments = 2\n";
     for (body, line) in [(CLOTH, 7), (rope, 7)] {
         for setting in ["volume = false", "volume = { modulus = 10.0 }"] {
-            let (_, message) = error_at(&format!("{body}{setting}\n"), line, "bodies[0].volume");
+            let message =
+                error_at(&format!("{body}{setting}\n"), line, "bodies[0].volume").to_string();
             assert!(message.contains("without volume elements"), "{message}");
             assert!(
                 message.contains("only `lattice`, `tet-mesh` and `layered`"),

@@ -3,9 +3,12 @@
 //! exactly, the default modulus against hand computations, and the
 //! modulus's errors.
 
+mod common;
+
 use std::collections::HashMap;
 
 use approx::assert_relative_eq;
+use common::two_tets;
 use hooke_core::{SystemBuilder, Vec3};
 use hooke_scenes::{
     Body, Cloth, Lattice, Layered, Rope, SceneError, Shell, Solid, Springs, TetMesh, TetSplit,
@@ -111,20 +114,6 @@ fn a_tet_lattice_has_its_springs_on_its_volume_elements() {
         }
         assert_eq!(springs, edges, "{split:?}");
     }
-}
-
-/// Two unit-corner tets sharing the face (1, 2, 3), on either side of it.
-fn two_tets() -> TetMesh {
-    TetMesh::new(
-        [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 1.0, 1.0],
-        ],
-        [[0, 1, 2, 3], [4, 1, 3, 2]],
-    )
 }
 
 #[test]
