@@ -137,7 +137,7 @@ impl ForceEvaluator {
             || {
                 external_forces(system, v, f);
                 scatter(own, x, v, f);
-                volume_forces(system, x, f);
+                system.add_volume_forces(x, f);
             },
             || {
                 buffers
@@ -190,19 +190,10 @@ fn scatter(springs: &[crate::Spring], x: &[Vec3], v: &[Vec3], f: &mut [Vec3]) {
     f[run] += sum;
 }
 
-/// Adds the forces of the volume elements to `f`.
-fn volume_forces(system: &System, x: &[Vec3], f: &mut [Vec3]) {
-    for t in system.tets().iter().filter(|t| t.modulus > 0.0) {
-        for (&i, fi) in t.vertices.iter().zip(t.forces(x)) {
-            f[i] += fi;
-        }
-    }
-}
-
 fn sequential_forces(system: &System, x: &[Vec3], v: &[Vec3], f: &mut [Vec3]) {
     external_forces(system, v, f);
     scatter(system.springs(), x, v, f);
-    volume_forces(system, x, f);
+    system.add_volume_forces(x, f);
 }
 
 #[cfg(test)]

@@ -136,6 +136,19 @@ impl System {
         &self.tets
     }
 
+    /// Adds the forces of the volume elements at positions `x` to `f`
+    /// (those of modulus 0 have none).
+    ///
+    /// # Panics
+    /// If an element names a particle beyond `x` or `f`.
+    pub fn add_volume_forces(&self, x: &[Vec3], f: &mut [Vec3]) {
+        for t in self.tets.iter().filter(|t| t.modulus > 0.0) {
+            for (&i, fi) in t.vertices.iter().zip(t.forces(x)) {
+                f[i] += fi;
+            }
+        }
+    }
+
     /// How many volume elements are inverted (volume ratio `J ≤ 0`) at
     /// positions `x`, and the smallest `J`; `None` for a system without
     /// volume elements.

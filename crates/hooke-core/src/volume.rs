@@ -140,8 +140,9 @@ impl Tet {
     /// The forces `−∂E/∂xₐ` on the four vertices at positions `x`, N.
     #[must_use]
     pub fn forces(&self, x: &[Vec3]) -> [Vec3; 4] {
-        let scale = -self.modulus * self.rest_volume * (self.volume_ratio(x) - 1.0);
-        self.volume_gradient(x).map(|g| scale * g)
+        let f = self.deformation(x);
+        let scale = -self.modulus * self.rest_volume * (f.determinant() - 1.0);
+        self.spread(&(scale * cofactor(&f)))
     }
 
     /// `[∂⟨P, F⟩/∂xₐ]ₐ`: the gradient in the vertices of a function whose

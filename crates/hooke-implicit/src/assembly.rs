@@ -417,11 +417,21 @@ pub(crate) fn volume_energy(system: &System, x: &[Vec3]) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cholesky::SparseCholesky;
+    use crate::filter::Filter;
     use hooke_core::SystemBuilder;
 
-    /// Two tetrahedra sharing a face, springs on some of their edges,
-    /// deformed so that one is inverted; gravity and air damping on.
-    fn system() -> (System, Vec<Vec3>) {
+    /// Two tetrahedra sharing a face, of moduli `moduli`, on five
+    /// particles of 0.5 kg, with springs of 50 N/m and damping `damping`
+    /// between the pairs `springs`; then `finish` (gravity, damping) and
+    /// the build. Also returns positions where the first element is
+    /// inverted (its apex through the shared face).
+    fn two_tets(
+        springs: impl IntoIterator<Item = (usize, usize)>,
+        damping: f64,
+        moduli: [f64; 2],
+        finish: impl FnOnce(&mut SystemBuilder),
+    ) -> (System, Vec<Vec3>) {
         let mut b = SystemBuilder::new();
         let rest = [
             [0.0, 0.0, 0.0],
@@ -431,15 +441,25 @@ mod tests {
             [0.4, -0.9, 0.3],
         ];
         let p: Vec<usize> = rest.iter().map(|&x| b.particle(0.5, x)).collect();
-        for (i, j) in [(0, 1), (1, 2), (2, 3), (3, 4)] {
-            b.spring(p[i], p[j], 50.0).damping(0.3);
+        for (i, j) in springs {
+            b.spring(p[i], p[j], 50.0).damping(damping);
         }
-        b.tet([p[0], p[1], p[2], p[3]], 2e3);
-        b.tet([p[0], p[1], p[2], p[4]], 5e2);
-        b.gravity([0.0, -9.81, 0.0]).air_damping(0.1);
+        b.tet([p[0], p[1], p[2], p[3]], moduli[0]);
+        b.tet([p[0], p[1], p[2], p[4]], moduli[1]);
+        finish(&mut b);
         let system = b.build().unwrap();
         let mut x = system.initial_positions().to_vec();
         x[3] = Vec3::new(0.35, -0.3, 0.25);
+        (system, x)
+    }
+
+    /// [`two_tets`] with springs on some of their edges, gravity and air
+    /// damping, and a second vertex moved too.
+    fn system() -> (System, Vec<Vec3>) {
+        let springs = [(0, 1), (1, 2), (2, 3), (3, 4)];
+        let (system, mut x) = two_tets(springs, 0.3, [2e3, 5e2], |b| {
+            b.gravity([0.0, -9.81, 0.0]).air_damping(0.1);
+        });
         x[1] += Vec3::new(0.2, 0.1, -0.1);
         (system, x)
     }
@@ -527,42 +547,17 @@ mod tests {
             );
         }
     }
-}
-
-#[cfg(test)]
-mod factor_tests {
-    use super::*;
-    use crate::cholesky::SparseCholesky;
-    use crate::filter::Filter;
-    use hooke_core::SystemBuilder;
 
     /// Where every pair of an element's vertices is joined by a spring,
     /// the Cholesky factor holds the elements' blocks and solves the
     /// assembled system exactly.
     #[test]
     fn the_factor_solves_a_system_with_elements_on_springs() {
-        let mut b = SystemBuilder::new();
-        let rest = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.2, 0.0, 0.9],
-            [0.3, 0.8, 0.2],
-            [0.4, -0.9, 0.3],
-        ];
-        let p: Vec<usize> = rest.iter().map(|&x| b.particle(0.5, x)).collect();
-        for i in 0..5 {
-            for j in i + 1..5 {
-                if (i, j) != (3, 4) {
-                    b.spring(p[i], p[j], 50.0);
-                }
-            }
-        }
-        b.tet([p[0], p[1], p[2], p[3]], 2e4);
-        b.tet([p[0], p[1], p[2], p[4]], 5e3);
-        let system = b.build().unwrap();
+        let every_pair_but_3_4 = (0..5)
+            .flat_map(|i| (i + 1..5).map(move |j| (i, j)))
+            .filter(|&pair| pair != (3, 4));
+        let (system, x) = two_tets(every_pair_but_3_4, 0.0, [2e4, 5e3], |_| {});
         let n = system.particle_count();
-        let mut x = system.initial_positions().to_vec();
-        x[3] = Vec3::new(0.35, -0.3, 0.25);
         let v = vec![Vec3::zeros(); n];
         let lin = Linearization {
             positions: &x,

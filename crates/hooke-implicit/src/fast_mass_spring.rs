@@ -251,11 +251,7 @@ impl Integrator for FastMassSpring {
             }
             volume.clear();
             volume.resize(x.len(), Vec3::zeros());
-            for t in system.tets().iter().filter(|t| t.modulus > 0.0) {
-                for (&i, f) in t.vertices.iter().zip(t.forces(x)) {
-                    volume[i] += f;
-                }
-            }
+            system.add_volume_forces(x, volume);
             for c in 0..3 {
                 let rhs = &mut prefactored.rhs;
                 for (i, &u) in prefactored.unknown.iter().enumerate() {

@@ -185,8 +185,9 @@ impl Newton<'_> {
                 .and_then(|()| {
                     if let Some(contact) = self.contact.as_deref_mut() {
                         let a = self.topology.matrix_mut();
+                        let assembled = a.extra_rows.len();
                         contact.add(system, self.x, v, beta_h, self.b, a);
-                        self.topology.contacts_added();
+                        self.topology.contacts_added(assembled);
                     }
                     self.solve
                         .solve(self.topology, self.x, self.b, delta, self.pcg, self.report)

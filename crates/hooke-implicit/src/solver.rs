@@ -363,9 +363,10 @@ impl Topology {
     }
 
     /// Renews the block-Jacobi inverses of the rows that contact terms
-    /// added to since the last assembly.
-    pub(crate) fn contacts_added(&mut self) {
-        for &(i, _) in &self.matrix.extra_rows {
+    /// added to after the assembly, whose own diagonal blocks (the volume
+    /// elements' among them) end at `assembled` in the list.
+    pub(crate) fn contacts_added(&mut self, assembled: usize) {
+        for &(i, _) in &self.matrix.extra_rows[assembled..] {
             let i = i as usize;
             if let Some(inverse) = self.matrix.diagonal[i].inverse_if_positive_definite() {
                 self.jacobi.inverses[i] = inverse;
