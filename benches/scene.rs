@@ -7,6 +7,7 @@
 //! Run with `cargo bench --bench scene`.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use hooke::implicit::Minimizer;
 use hooke::prelude::*;
 
 /// The default scene's first simulated second, from its initial state,
@@ -15,13 +16,10 @@ fn default_scene(c: &mut Criterion) {
     let scene = builtin::load("stiff-cloth").unwrap();
     let steps = (1.0 / scene.timing.dt).round() as usize;
     let mut linearized = scene.integrator;
-    let IntegratorSpec::Implicit {
-        linearized: flag, ..
-    } = &mut linearized
-    else {
+    let IntegratorSpec::Implicit { minimizer, .. } = &mut linearized else {
         panic!("the default scene is implicit");
     };
-    *flag = true;
+    *minimizer = Minimizer::Linearized;
     let mut group = c.benchmark_group("default-scene");
     group.sample_size(10);
     for (label, spec) in [("converged", scene.integrator), ("linearized", linearized)] {

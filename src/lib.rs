@@ -79,7 +79,7 @@ pub mod prelude {
         Beeman, DormandPrince, ExplicitEuler, Gear, Heun, Leapfrog, Midpoint, PositionVerlet, Rk4,
         SymplecticEuler, VelocityVerlet,
     };
-    pub use hooke_implicit::{Implicit, LinearSolver, PcgSettings, Scheme};
+    pub use hooke_implicit::{Implicit, LinearSolver, Minimizer, PcgSettings, Scheme};
     pub use hooke_lab::{AccuracyOptions, StabilityOptions, accuracy, stability};
     pub use hooke_scenes::{
         Cloth, IntegratorSpec, Lattice, Layered, Method, Rope, Scene, Shell, Solid, TetMesh,

@@ -3,6 +3,7 @@
 use std::fmt::Write;
 
 use hooke_core::{Obstacle, Path, System, Vec3};
+use hooke_implicit::Minimizer;
 use hooke_scenes::{IntegratorSpec, Scene, SceneBody, SolverSpec};
 
 use crate::cli_error::CliError;
@@ -215,7 +216,7 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
         }
         IntegratorSpec::Implicit {
             solver,
-            linearized,
+            minimizer,
             newton_iterations,
             newton_tolerance,
             max_halvings,
@@ -252,12 +253,16 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
                     "PCG with a lagged Cholesky factor to {tolerance:e} in at most {max_iterations} iterations"
                 ),
             };
-            if linearized {
-                format!(", {solver}, linearised (Baraff-Witkin, one solve)")
-            } else {
-                format!(
+            match minimizer {
+                Minimizer::Linearized => {
+                    format!(", {solver}, linearised (Baraff-Witkin, one solve)")
+                }
+                Minimizer::Newton => format!(
                     ", {solver}, converged: at most {newton_iterations} Newton iterations to a relative {newton_tolerance:e}, {substeps}{strict}"
-                )
+                ),
+                Minimizer::QuasiNewton { history } => format!(
+                    ", quasi-Newton (L-BFGS, history {history}, prefactored spring Laplacian): at most {newton_iterations} iterations to a relative {newton_tolerance:e}, {substeps}{strict}"
+                ),
             }
         }
     }

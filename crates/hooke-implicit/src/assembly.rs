@@ -105,15 +105,15 @@ pub struct Assembler {
     /// Per chunk of springs: its sums into each particle's diagonal block
     /// and right-hand side.
     diagonals: Vec<SymBlock>,
-    rhs: Vec<Vec3>,
+    pub(crate) rhs: Vec<Vec3>,
     /// Per chunk: the rows its springs reach.
-    touched: Vec<Range<usize>>,
+    pub(crate) touched: Vec<Range<usize>>,
     /// Per slot: the spring's damping direction, frozen at the step's start.
-    directions: Vec<Vec3>,
+    pub(crate) directions: Vec<Vec3>,
     /// Per particle: the volume elements' sums into its diagonal block and
     /// right-hand side.
     volume_diagonals: Vec<SymBlock>,
-    volume_rhs: Vec<Vec3>,
+    pub(crate) volume_rhs: Vec<Vec3>,
 }
 
 impl Assembler {
@@ -152,19 +152,11 @@ impl Assembler {
 
         // Pass one: each chunk of slots writes its springs' blocks and
         // scatters them, with their right-hand-side shares, into its own
-        // accumulators. The slots are ordered by their lower row, so a chunk
-        // touches only the rows from its first slot's row to its last slot's
-        // row plus the pattern's bandwidth.
-        let chunk = m.div_ceil(spring_chunks(m)).max(1);
-        let parts = m.div_ceil(chunk);
+        // accumulators.
         let pattern = &a.pattern;
-        self.diagonals.resize(parts * n, SymBlock::default());
-        self.rhs.resize(parts * n, Vec3::zeros());
-        self.touched.clear();
-        self.touched.extend((0..parts).map(|p| {
-            let (first, last) = (p * chunk, ((p + 1) * chunk).min(m) - 1);
-            pattern.row_of(first)..(pattern.row_of(last) + pattern.bandwidth() + 1).min(n)
-        }));
+        let chunk = self.chunks(pattern, n);
+        self.diagonals
+            .resize(self.touched.len() * n, SymBlock::default());
         let springs = system.springs();
         let touched = &self.touched;
         let work = |p: usize,
@@ -206,7 +198,7 @@ impl Assembler {
             }
         };
         let (blocks, directions) = (&mut a.springs, &mut self.directions);
-        if cfg!(feature = "parallel") && parts > 1 {
+        if cfg!(feature = "parallel") && self.touched.len() > 1 {
             #[cfg(feature = "parallel")]
             {
                 use rayon::prelude::*;
@@ -291,6 +283,24 @@ impl Assembler {
             }),
             (particle, _) => Err(StepError::NonFiniteSystem { time, particle }),
         }
+    }
+
+    /// Splits the pattern's slots into one contiguous chunk per thread,
+    /// records the rows each chunk touches and sizes the chunks'
+    /// right-hand-side accumulators; returns the chunk length. The slots are
+    /// ordered by their lower row, so a chunk touches only the rows from its
+    /// first slot's row to its last slot's row plus the pattern's bandwidth.
+    pub(crate) fn chunks(&mut self, pattern: &Pattern, n: usize) -> usize {
+        let m = pattern.slots();
+        let chunk = m.div_ceil(spring_chunks(m)).max(1);
+        let parts = m.div_ceil(chunk);
+        self.rhs.resize(parts * n, Vec3::zeros());
+        self.touched.clear();
+        self.touched.extend((0..parts).map(|p| {
+            let (first, last) = (p * chunk, ((p + 1) * chunk).min(m) - 1);
+            pattern.row_of(first)..(pattern.row_of(last) + pattern.bandwidth() + 1).min(n)
+        }));
+        chunk
     }
 
     /// Adds the volume elements' blocks between their vertices to `a` and

@@ -8,7 +8,7 @@ use hooke_core::{CompressedSprings, State, StepError, StepReport, System, Vec3};
 use crate::assembly::Linearization;
 use crate::contact::Contact;
 use crate::energy::{energy, pin_work, rounding};
-use crate::implicit::{Implicit, Scheme, Work};
+use crate::implicit::{Implicit, Minimizer, Scheme, Work};
 use crate::newton::{self, Iterates, Newton};
 use crate::solver::{Solve, topology};
 use crate::vector::for_each_row;
@@ -84,6 +84,7 @@ impl Implicit {
         report: &mut StepReport,
     ) -> Result<Outcome, StepError> {
         let saved_history = self.history;
+        let (solver, linearized) = (self.solver_for_topology(), self.is_linearized());
         let previous = self.history.take(system, state);
         let time = state.time();
         let (x0, v0) = (state.positions(), state.velocities());
@@ -119,7 +120,15 @@ impl Implicit {
             dv.fill(Vec3::zeros());
         }
 
-        let (compressed, solver, strict) = (self.compressed, self.solver, self.strict);
+        let (compressed, strict) = (self.compressed, self.strict);
+        let quasi = match self.minimizer {
+            Minimizer::QuasiNewton { history } => {
+                let contact = Contact::present(system);
+                self.quasi.begin(system, (beta_h, contact), history, time)?;
+                Some(&mut self.quasi)
+            }
+            _ => None,
+        };
         let topology = topology(&mut self.topology, solver, self.amg_renewal, system)?;
         let solve = Solve {
             system,
@@ -136,17 +145,23 @@ impl Implicit {
         // Baraff & Witkin's linearised step: the whole step when
         // linearised (without contact), otherwise the first candidate for
         // Newton's starting point. Its assembly also freezes the dampers'
-        // directions at the step's start.
-        let lin = Linearization {
-            positions: x0,
-            velocities: v0,
-            displacement: Some(u),
-            inertia,
-            beta_h,
-            compressed,
-            freeze_directions: true,
-        };
-        solve.assemble(&mut self.assembler, topology, &lin, b)?;
+        // directions at the step's start. The quasi-Newton step assembles no
+        // matrix: it freezes the directions and starts from vₙ.
+        if quasi.is_some() {
+            self.assembler
+                .freeze_directions(system, topology.pattern(), x0);
+        } else {
+            let lin = Linearization {
+                positions: x0,
+                velocities: v0,
+                displacement: Some(u),
+                inertia,
+                beta_h,
+                compressed,
+                freeze_directions: true,
+            };
+            solve.assemble(&mut self.assembler, topology, &lin, b)?;
+        }
         let lin_steps = if let Some(contact) = contact.as_deref_mut() {
             // Newton starts from the feasible positions of the step's start
             // or, if lower in Φ, from the inertial predictor vₙ + z as far
@@ -165,6 +180,11 @@ impl Implicit {
             let tau = contact.limit(system, x, ahead);
             for_each_row(trial, |i, t| *t = v[i] + tau * *t);
             1
+        } else if quasi.is_some() {
+            let prescribed = &self.pins.prescribed;
+            for_each_row(v, |i, v| *v = v0[i] + prescribed[i]);
+            trial.copy_from_slice(v);
+            0
         } else {
             if pinned {
                 self.pins.prescribe(topology.matrix(), b);
@@ -193,8 +213,9 @@ impl Implicit {
             report,
             inexact: self.inexact_newton,
             hessian: CompressedSprings::Exact,
+            quasi,
         };
-        let outcome = if self.linearized && !has_contact {
+        let outcome = if linearized && !has_contact {
             newton::Outcome {
                 converged: true,
                 iterations: 1,
@@ -222,13 +243,13 @@ impl Implicit {
                 ahead,
                 look,
             };
-            let (iterations, tolerance) = if self.linearized {
+            let (iterations, tolerance) = if linearized {
                 (lin_steps, f64::INFINITY)
             } else {
                 (self.newton_iterations, self.newton_tolerance)
             };
             let mut outcome = newton.minimize(&mut iterates, v0, start, iterations, tolerance)?;
-            if self.linearized {
+            if linearized {
                 outcome.converged = true;
             }
             outcome
@@ -248,7 +269,7 @@ impl Implicit {
         let excess = after - before - work - rounding(magnitude_before.max(magnitude_after));
         // Converged backward-Euler steps are held to the energy test; BDF2's
         // two-step steps and the linearised step only report a gain.
-        let tested = !self.linearized && !two_step;
+        let tested = !linearized && !two_step;
         report.newton_iterations += outcome.iterations;
         report.newton_iterations_max = report.newton_iterations_max.max(outcome.iterations);
         let error = self.error_control.and_then(|control| {
@@ -261,9 +282,7 @@ impl Implicit {
                 .map(|err| (err, order))
         });
         let too_large = error.is_some_and(|(err, _)| err > 1.0);
-        if !self.linearized
-            && !at_floor
-            && (!outcome.converged || (tested && excess > 0.0) || too_large)
+        if !linearized && !at_floor && (!outcome.converged || (tested && excess > 0.0) || too_large)
         {
             self.history = saved_history;
             return Ok(Outcome::Rejected { error });

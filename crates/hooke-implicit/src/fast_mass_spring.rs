@@ -6,8 +6,7 @@ use hooke_core::{
     Integrator, ParameterError, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
-use crate::amg::coarse::ScalarCholesky;
-use crate::amg::csr::Csr;
+use crate::laplacian::Laplacian;
 
 /// Backward Euler for springs as Liu et al. (2013) solve it.
 ///
@@ -54,23 +53,12 @@ use crate::amg::csr::Csr;
 #[derive(Debug)]
 pub struct FastMassSpring {
     iterations: usize,
-    matrix: Option<Prefactored>,
+    matrix: Option<Laplacian>,
     out: StepBuffers,
     y: Vec<Vec3>,
     d: Vec<Vec3>,
     /// The volume elements' forces at the current iterate.
     volume: Vec<Vec3>,
-}
-
-/// The factorized `(M + h² L)_ff` of one system and step size.
-#[derive(Debug)]
-struct Prefactored {
-    system: u64,
-    dt_bits: u64,
-    /// Per particle, its unknown (`u32::MAX` for a pinned one).
-    unknown: Vec<u32>,
-    cholesky: ScalarCholesky,
-    rhs: Vec<f64>,
 }
 
 impl FastMassSpring {
@@ -128,81 +116,6 @@ impl Default for FastMassSpring {
     }
 }
 
-impl Prefactored {
-    /// Assembles and factorizes `(M + h² L)_ff` for `system` and `h` (at
-    /// `time`, for the error).
-    fn new(system: &System, h: f64, time: f64) -> Result<Self, StepError> {
-        let n = system.particle_count();
-        let too_large = || StepError::SystemTooLarge {
-            particles: n,
-            springs: system.springs().len(),
-        };
-        let mut unknown = vec![u32::MAX; n];
-        let mut count = 0u32;
-        for (i, u) in unknown.iter_mut().enumerate() {
-            if !system.is_pinned(i) {
-                *u = count;
-                count += 1;
-            }
-        }
-        let free = count as usize;
-        // (row, column, value) of both triangles, summed below.
-        let mut entries: Vec<(u32, u32, f64)> =
-            Vec::with_capacity(free + 4 * system.springs().len());
-        for (i, &m) in system.masses().iter().enumerate() {
-            if unknown[i] != u32::MAX {
-                entries.push((unknown[i], unknown[i], m));
-            }
-        }
-        for s in system.springs() {
-            let w = h * h * s.stiffness;
-            let (ui, uj) = (unknown[s.i], unknown[s.j]);
-            for u in [ui, uj] {
-                if u != u32::MAX {
-                    entries.push((u, u, w));
-                }
-            }
-            if ui != u32::MAX && uj != u32::MAX {
-                entries.push((ui, uj, -w));
-                entries.push((uj, ui, -w));
-            }
-        }
-        entries.sort_unstable_by_key(|&(r, c, _)| (r, c));
-        let mut a = Csr {
-            row_ptr: vec![0; free + 1],
-            ..Csr::default()
-        };
-        let mut last = None;
-        for (r, c, v) in entries {
-            if last == Some((r, c)) {
-                *a.values.last_mut().expect("the entry pushed last") += v;
-            } else {
-                a.col_idx.push(c);
-                a.values.push(v);
-                a.row_ptr[r as usize + 1] += 1;
-                last = Some((r, c));
-            }
-        }
-        for r in 0..free {
-            a.row_ptr[r + 1] += a.row_ptr[r];
-        }
-        let mut cholesky = ScalarCholesky::new(&a).ok_or_else(too_large)?;
-        cholesky
-            .factorize(&a)
-            .map_err(|()| StepError::NotPositiveDefinite {
-                time,
-                particle: None,
-            })?;
-        Ok(Self {
-            system: system.id(),
-            dt_bits: h.to_bits(),
-            unknown,
-            cholesky,
-            rhs: vec![0.0; free],
-        })
-    }
-}
-
 impl Integrator for FastMassSpring {
     fn step(
         &mut self,
@@ -220,11 +133,13 @@ impl Integrator for FastMassSpring {
         } = self;
         out.begin(Self::NAME, system, state, dt, [&mut *y])?;
         d.resize(system.springs().len(), Vec3::zeros());
-        if matrix
-            .as_ref()
-            .is_none_or(|m| m.system != system.id() || m.dt_bits != dt.to_bits())
-        {
-            *matrix = Some(Prefactored::new(system, dt, state.time())?);
+        let weights = (0.0, |s: &hooke_core::Spring| dt * dt * s.stiffness);
+        match matrix {
+            Some(m) if m.matches(system, dt.to_bits()) => {}
+            Some(m) if m.is_for(system) => {
+                m.refactor(system, weights, (dt.to_bits(), &[]), state.time())?;
+            }
+            _ => *matrix = Some(Laplacian::new(system, weights, dt.to_bits(), state.time())?),
         }
         let prefactored = matrix.as_mut().expect("factorized above");
         let (x0, v0, time) = (state.positions(), state.velocities(), state.time());
@@ -276,10 +191,10 @@ impl Integrator for FastMassSpring {
                         }
                     }
                 }
-                prefactored.cholesky.solve(rhs);
+                prefactored.solve();
                 for (i, &u) in prefactored.unknown.iter().enumerate() {
                     if u != u32::MAX {
-                        x[i][c] = rhs[u as usize];
+                        x[i][c] = prefactored.rhs[u as usize];
                     }
                 }
             }

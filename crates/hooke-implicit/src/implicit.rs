@@ -7,6 +7,7 @@ use crate::cg::PcgWorkspace;
 use crate::contact::Contact;
 use crate::error_control::ErrorControl;
 use crate::pins::Pins;
+use crate::quasi_newton::QuasiNewton;
 use crate::solver::{AmgRenewal, LinearSolver, Topology};
 
 /// The time discretisation. Both are implicit, A-stable and L-stable: stiff
@@ -27,6 +28,55 @@ pub enum Scheme {
     /// Responsive Cloth*, SIGGRAPH 2002; Hairer & Wanner, *Solving Ordinary
     /// Differential Equations II*, §V.1).
     Bdf2,
+}
+
+/// How a step minimises its incremental potential `Φ` (see [`Implicit`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Minimizer {
+    /// Newton's method on the assembled 3×3-block system, the exact spring
+    /// Hessian where it is positive definite (the default).
+    #[default]
+    Newton,
+    /// L-BFGS with the last `history` curvature pairs and the constant,
+    /// prefactored initial Hessian `H₀ = M + βh (γI + C₀) + β²h² L` (the
+    /// springs' stiffness and damping Laplacians; Liu, Bouaziz & Kavan
+    /// 2017): an iteration costs one gradient and three pairs of triangular
+    /// solves, no matrix is assembled. The same line search, stopping rule,
+    /// energy test and substeps as Newton's method; it converges linearly
+    /// where Newton converges quadratically, so it wins at loose
+    /// tolerances and on large meshes. The `quasi_newton` module gives the
+    /// equations.
+    QuasiNewton {
+        /// The curvature pairs kept.
+        history: usize,
+    },
+    /// Baraff & Witkin's linearised step: one linear solve, no line
+    /// search, no rejection.
+    Linearized,
+}
+
+impl Minimizer {
+    /// The default L-BFGS history (Liu et al.'s).
+    pub const HISTORY: usize = 5;
+
+    /// L-BFGS with the default history.
+    #[must_use]
+    pub fn quasi_newton() -> Self {
+        Self::QuasiNewton {
+            history: Self::HISTORY,
+        }
+    }
+
+    /// The name scene files and reports use: `"newton"`, `"quasi-newton"`
+    /// or `"linearized"`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Newton => "newton",
+            Self::QuasiNewton { .. } => "quasi-newton",
+            Self::Linearized => "linearized",
+        }
+    }
 }
 
 /// An implicit integrator on the assembled mass-spring system.
@@ -115,6 +165,22 @@ pub enum Scheme {
 /// estimated local error instead (see the [`error_control`](crate::error_control)
 /// module); rejection for convergence and energy works as above.
 ///
+/// # The quasi-Newton step
+///
+/// With [`Minimizer::QuasiNewton`] each iterate's direction is L-BFGS's,
+/// `δ = −H ∇Φ`, from the last `m` curvature pairs around the constant
+/// initial Hessian `H₀ = M + βh (γI + C₀) + β²h² L` (the `quasi_newton`
+/// module); the iteration starts at `vₙ` (with the pins' prescribed
+/// velocities), and the line search, the stopping rule, the energy test
+/// and the substeps are the ones above. Its decrement `λ = √|∇Φ·δ|` is
+/// measured in `H`'s norm, not the exact Hessian's: `H₀` bounds every
+/// spring's Hessian from above, so `λ` underestimates the exact decrement
+/// where the cloth is soft, and at the same `ε` the quasi-Newton step stops
+/// farther from the minimum than Newton's (the work-precision table in
+/// `benches/README.md` gives the errors). For the same reason its
+/// precision floor is the last iterate lowering `Φ` by no more than
+/// rounding, not the predicted decrease.
+///
 /// # The linearised step (Baraff & Witkin)
 ///
 /// [`Implicit::linearized`] takes exactly Baraff & Witkin's step (*Large
@@ -152,7 +218,7 @@ pub enum Scheme {
 pub struct Implicit {
     pub(crate) scheme: Scheme,
     pub(crate) solver: LinearSolver,
-    pub(crate) linearized: bool,
+    pub(crate) minimizer: Minimizer,
     pub(crate) newton_iterations: usize,
     pub(crate) newton_tolerance: f64,
     pub(crate) inexact_newton: bool,
@@ -171,6 +237,7 @@ pub struct Implicit {
     pub(crate) assembler: Assembler,
     pub(crate) pins: Pins,
     pub(crate) contact: Contact,
+    pub(crate) quasi: QuasiNewton,
     pub(crate) work: Work,
 }
 
@@ -249,7 +316,7 @@ impl Implicit {
         Self {
             scheme,
             solver: LinearSolver::default(),
-            linearized: false,
+            minimizer: Minimizer::Newton,
             newton_iterations: Self::NEWTON_ITERATIONS,
             newton_tolerance: Self::NEWTON_TOLERANCE,
             inexact_newton: true,
@@ -265,6 +332,7 @@ impl Implicit {
             assembler: Assembler::default(),
             pins: Pins::default(),
             contact: Contact::default(),
+            quasi: QuasiNewton::default(),
             work: Work::default(),
         }
     }
@@ -360,15 +428,35 @@ impl Implicit {
     /// let integrator = hooke_implicit::Implicit::backward_euler().linearized();
     /// ```
     #[must_use]
-    pub fn linearized(mut self) -> Self {
-        self.linearized = true;
-        self
+    pub fn linearized(self) -> Self {
+        self.with_minimizer(Minimizer::Linearized)
     }
 
     /// Whether the step is the linearised one.
     #[must_use]
     pub fn is_linearized(&self) -> bool {
-        self.linearized
+        self.minimizer == Minimizer::Linearized
+    }
+
+    /// Minimises each step's `Φ` with `minimizer` (default
+    /// [`Minimizer::Newton`]); the iteration cap and tolerance of
+    /// [`Implicit::with_newton`] apply to each.
+    ///
+    /// ```
+    /// use hooke_implicit::{Implicit, Minimizer};
+    /// let lbfgs = Implicit::backward_euler().with_minimizer(Minimizer::quasi_newton());
+    /// ```
+    #[must_use]
+    pub fn with_minimizer(mut self, minimizer: Minimizer) -> Self {
+        self.minimizer = minimizer;
+        self.topology = None;
+        self
+    }
+
+    /// How each step's `Φ` is minimised.
+    #[must_use]
+    pub fn minimizer(&self) -> Minimizer {
+        self.minimizer
     }
 
     /// Lets a rejected step be cut in half at most `halvings` times (the
@@ -423,5 +511,16 @@ impl Implicit {
     #[must_use]
     pub fn scheme(&self) -> Scheme {
         self.scheme
+    }
+
+    /// The linear solver whose topology a step uses: the quasi-Newton step
+    /// solves with its own factor of `H₀` and needs the pattern and the
+    /// conditioning bounds only, so it asks for the one that builds no
+    /// factor or hierarchy.
+    pub(crate) fn solver_for_topology(&self) -> LinearSolver {
+        match self.minimizer {
+            Minimizer::QuasiNewton { .. } => LinearSolver::Pcg(crate::PcgSettings::default()),
+            _ => self.solver,
+        }
     }
 }

@@ -32,6 +32,12 @@
 //!    local error estimate. Everything that fell short is counted in the
 //!    [`StepReport`](hooke_core::StepReport).
 //!
+//! Instead of Newton's method, [`Minimizer::QuasiNewton`] minimises the
+//! same `Φ` by L-BFGS with the springs' prefactored stiffness Laplacian as
+//! its initial Hessian (Liu, Bouaziz & Kavan 2017): no 3×3-block matrix,
+//! one gradient and three pairs of triangular solves an iteration, the
+//! same line search, stopping rule, energy test and substeps.
+//!
 //! Beside [`Implicit`], [`FastMassSpring`] takes backward-Euler steps the
 //! way Liu et al. (2013) do: a fixed number of local/global iterations on a
 //! constant, prefactored matrix, converging to the same step.
@@ -124,10 +130,13 @@ pub mod error_control;
 mod fast_mass_spring;
 mod filter;
 mod implicit;
+mod laplacian;
 mod matrix;
 mod newton;
 mod pattern;
 mod pins;
+mod quasi_newton;
+mod residual;
 mod solver;
 mod step;
 mod vector;
@@ -140,7 +149,7 @@ pub use cholesky::{FactorPreconditioner, SparseCholesky};
 pub use error_control::ErrorControl;
 pub use fast_mass_spring::FastMassSpring;
 pub use filter::Filter;
-pub use implicit::{Implicit, Scheme};
+pub use implicit::{Implicit, Minimizer, Scheme};
 pub use matrix::BlockMatrix;
 pub use pattern::Pattern;
 pub use solver::{AmgRenewal, LinearSolver};

@@ -6,6 +6,8 @@ use hooke_core::{CompressedSprings, StepError, StepReport, System, Vec3};
 
 use crate::assembly::{Assembler, Linearization, Potential};
 use crate::contact::Contact;
+use crate::quasi_newton::QuasiNewton;
+use crate::residual::Point;
 use crate::solver::{Solve, Topology};
 use crate::vector::{dot, for_each_row, for_each_row2};
 
@@ -86,6 +88,9 @@ pub(crate) struct Newton<'a> {
     /// step needed compressed springs clamped, its later iterations start
     /// there instead of assembling and factoring the exact blocks first.
     pub(crate) hessian: CompressedSprings,
+    /// The quasi-Newton state, when the directions are L-BFGS's instead of
+    /// Newton's.
+    pub(crate) quasi: Option<&'a mut QuasiNewton>,
 }
 
 impl Newton<'_> {
@@ -159,6 +164,11 @@ impl Newton<'_> {
     /// # Errors
     /// Assembly and solver errors.
     fn direction(&mut self, v: &[Vec3], delta: &mut [Vec3]) -> Result<f64, StepError> {
+        if let Some(quasi) = self.quasi.take() {
+            let slope = self.quasi_direction(quasi, v, delta);
+            self.quasi = Some(quasi);
+            return slope;
+        }
         let (system, x_tilde, v_tilde, beta_h) =
             (self.system, self.x_tilde, self.v_tilde, self.beta_h);
         let masses = system.masses();
@@ -202,6 +212,50 @@ impl Newton<'_> {
         }
         self.hessian = hessian;
         Ok(-dot(self.b, delta))
+    }
+
+    /// The quasi-Newton step at `v` (see the `quasi_newton` module): the
+    /// residual `−∇Φ(v)` with the contact terms' gradients, without any
+    /// matrix, then L-BFGS's two-loop recursion. Returns the slope `∇Φ·δ`.
+    ///
+    /// # Errors
+    /// [`StepError::NonFiniteSystem`] for a residual that is not finite.
+    fn quasi_direction(
+        &mut self,
+        quasi: &mut QuasiNewton,
+        v: &[Vec3],
+        delta: &mut [Vec3],
+    ) -> Result<f64, StepError> {
+        let (system, x_tilde, v_tilde, beta_h) =
+            (self.system, self.x_tilde, self.v_tilde, self.beta_h);
+        let masses = system.masses();
+        for_each_row2(self.x, self.inertia, |i, x, inertia| {
+            *x = x_tilde[i] + beta_h * v[i];
+            *inertia = masses[i] * (v_tilde[i] - v[i]);
+        });
+        let point = Point {
+            x: self.x,
+            v,
+            inertia: self.inertia,
+            beta_h,
+        };
+        let pattern = self.topology.pattern();
+        self.assembler
+            .residual(system, pattern, point, self.b, self.solve.time)?;
+        if let Some(contact) = self.contact.as_deref_mut() {
+            // The contact terms' Hessian blocks land in the matrix's extra
+            // blocks: their diagonal ones give the stand-in on H₀ at the
+            // step's first iterate, and are dropped.
+            let a = self.topology.matrix_mut();
+            contact.add(system, self.x, v, beta_h, self.b, a);
+            if quasi.pending() {
+                quasi.add_stand_in(system, &a.extra_rows, self.solve.time)?;
+            }
+            a.clear_extra();
+        }
+        self.report.linear_solves += 1;
+        self.report.linear_solver = "cholesky";
+        Ok(quasi.direction(system, self.b, v, delta))
     }
 
     /// Minimises `Φ` from the iterate in `it.v` (where `Φ` is `start`) in at
@@ -252,6 +306,8 @@ impl Newton<'_> {
         tolerance: f64,
     ) -> Result<Outcome, StepError> {
         let mut current = start;
+        // Φ before the last accepted iterate (for the quasi-Newton floor).
+        let mut previous = f64::INFINITY;
         let mut outcome = Outcome {
             converged: false,
             iterations: 0,
@@ -266,13 +322,17 @@ impl Newton<'_> {
             outcome.residual = self.decrement(slope, it.v, it.delta, v0);
             // The longest fraction of δ collision detection allows.
             let limit = self.limit(it.v, it.delta, 1.0);
-            if limit >= 1.0
-                && (outcome.residual <= tolerance || 0.5 * slope.abs() <= current.rounding)
-            {
+            // A quasi-Newton step's model overestimates the curvature of
+            // soft modes and so its predicted decrease; it is at the floor
+            // only once the last iterate lowered Φ by no more than rounding.
+            let floor = 0.5 * slope.abs() <= current.rounding
+                && (self.quasi.is_none() || previous - current.value <= current.rounding);
+            if limit >= 1.0 && (outcome.residual <= tolerance || floor) {
                 add(it.v, it.delta);
                 outcome.converged = true;
                 break;
             }
+            previous = current.value;
             let sufficient = |value: Potential, alpha: f64| {
                 value.value <= current.value + ARMIJO * alpha * slope
             };

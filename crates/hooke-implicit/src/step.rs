@@ -49,10 +49,11 @@ impl Integrator for Implicit {
         w.x_start.copy_from_slice(state.positions());
         w.v_start.copy_from_slice(state.velocities());
         let (start, end) = (state.time(), state.time() + dt);
-        let longest = if self.linearized {
+        let solver = self.solver_for_topology();
+        let longest = if self.is_linearized() {
             f64::INFINITY
         } else {
-            topology(&mut self.topology, self.solver, self.amg_renewal, system)?
+            topology(&mut self.topology, solver, self.amg_renewal, system)?
                 .rates
                 .longest_step(Self::MAX_CONDITION)
         };
@@ -69,7 +70,7 @@ impl Integrator for Implicit {
             // The last substep ends exactly at the caller's time.
             let last = h >= remaining * (1.0 - 1e-12);
             let size = if last { remaining } else { h };
-            let at_floor = self.linearized || size <= floor * (1.0 + 1e-12);
+            let at_floor = self.is_linearized() || size <= floor * (1.0 + 1e-12);
             let outcome = self.attempt(
                 system,
                 state,

@@ -3,7 +3,7 @@
 
 use hooke_core::{Integrator, ParameterError};
 use hooke_explicit::DormandPrince;
-use hooke_implicit::Implicit;
+use hooke_implicit::{Implicit, Minimizer};
 use hooke_scenes::{IntegratorSpec, Method, SolverSpec};
 
 /// The parameters the lab gives the methods that have any: the implicit
@@ -12,9 +12,8 @@ use hooke_scenes::{IntegratorSpec, Method, SolverSpec};
 pub struct Settings {
     /// The implicit methods' linear solver.
     pub solver: SolverSpec,
-    /// Baraff & Witkin's linearised implicit step instead of the converged
-    /// one.
-    pub linearized: bool,
+    /// How the implicit steps minimise their incremental potential.
+    pub minimizer: Minimizer,
     /// Cap on Newton iterations per implicit (sub)step.
     pub newton_iterations: usize,
     /// Relative Newton tolerance (see `hooke_implicit::Implicit`).
@@ -30,7 +29,7 @@ impl Default for Settings {
     fn default() -> Self {
         Self {
             solver: SolverSpec::Cholesky,
-            linearized: false,
+            minimizer: Minimizer::Newton,
             newton_iterations: Implicit::NEWTON_ITERATIONS,
             newton_tolerance: Implicit::NEWTON_TOLERANCE,
             tolerance: DormandPrince::RTOL,
@@ -67,7 +66,7 @@ impl Settings {
             } => IntegratorSpec::Implicit {
                 scheme,
                 solver: self.solver,
-                linearized: self.linearized,
+                minimizer: self.minimizer,
                 newton_iterations: self.newton_iterations,
                 newton_tolerance: self.newton_tolerance,
                 max_halvings,
@@ -92,13 +91,13 @@ impl Settings {
             },
             IntegratorSpec::Implicit {
                 solver,
-                linearized,
+                minimizer,
                 newton_iterations,
                 newton_tolerance,
                 ..
             } => Self {
                 solver,
-                linearized,
+                minimizer,
                 newton_iterations,
                 newton_tolerance,
                 ..defaults

@@ -3,7 +3,9 @@
 
 use hooke_core::{Integrator, ParameterError};
 use hooke_explicit::{DormandPrince, ExplicitMethod};
-use hooke_implicit::{ErrorControl, FastMassSpring, Implicit, LinearSolver, PcgSettings, Scheme};
+use hooke_implicit::{
+    ErrorControl, FastMassSpring, Implicit, LinearSolver, Minimizer, PcgSettings, Scheme,
+};
 
 use crate::Method;
 
@@ -60,8 +62,9 @@ pub enum IntegratorSpec {
         scheme: Scheme,
         /// The linear solver.
         solver: SolverSpec,
-        /// Baraff & Witkin's linearised step instead of the converged one.
-        linearized: bool,
+        /// How each step's incremental potential is minimised: Newton's
+        /// method, L-BFGS, or Baraff & Witkin's linearised step.
+        minimizer: Minimizer,
         /// Cap on Newton iterations per (sub)step.
         newton_iterations: usize,
         /// Relative Newton tolerance `ε` (see `hooke_implicit::Implicit`).
@@ -137,7 +140,7 @@ impl IntegratorSpec {
         Self::Implicit {
             scheme,
             solver: SolverSpec::Auto,
-            linearized: false,
+            minimizer: Minimizer::Newton,
             newton_iterations: Implicit::NEWTON_ITERATIONS,
             newton_tolerance: Implicit::NEWTON_TOLERANCE,
             max_halvings: Implicit::MAX_HALVINGS,
@@ -172,7 +175,7 @@ impl IntegratorSpec {
             Self::Implicit {
                 scheme,
                 solver,
-                linearized,
+                minimizer,
                 newton_iterations,
                 newton_tolerance,
                 max_halvings,
@@ -204,11 +207,7 @@ impl IntegratorSpec {
                     Some(control) => implicit.with_error_control(control),
                     None => implicit,
                 };
-                Box::new(if linearized {
-                    implicit.linearized()
-                } else {
-                    implicit
-                })
+                Box::new(implicit.with_minimizer(minimizer))
             }
             Self::FastMassSpring { iterations } => Box::new(FastMassSpring::new(iterations)?),
         })

@@ -7,7 +7,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use hooke_core::{Path as Motion, Shape, Vec3};
-use hooke_implicit::{Implicit, Scheme};
+use hooke_implicit::{Implicit, Minimizer, Scheme};
 use hooke_scenes::file::{self, ErrorKind};
 use hooke_scenes::{IntegratorSpec, SolverSpec, builtin};
 
@@ -182,7 +182,7 @@ fn a_cloth_file_says_what_the_scene_holds() {
         scene.integrator,
         IntegratorSpec::Implicit {
             scheme: Scheme::Bdf2,
-            linearized: false,
+            minimizer: Minimizer::Newton,
             solver: SolverSpec::Pcg {
                 tolerance: 1e-7,
                 max_iterations: 300

@@ -4,7 +4,7 @@
 mod common;
 
 use hooke_explicit::DormandPrince;
-use hooke_implicit::{ErrorControl, PcgSettings};
+use hooke_implicit::{ErrorControl, Minimizer, PcgSettings};
 use hooke_scenes::{IntegratorSpec, Method, SolverSpec};
 
 use common::{CLOTH, parse};
@@ -148,9 +148,35 @@ fn implicit_step_keys_out_of_range_or_misplaced_are_errors_naming_the_key() {
             "integrator.max_halvings",
         ),
         ("method = \"bdf2\"\nmax_halvings = -1", "max_halvings"),
+        ("step = \"lbfgs\"", "integrator.step"),
+        ("history = 3", "integrator.history"),
+        ("step = \"newton\"\nhistory = 3", "integrator.history"),
+        ("method = \"rk4\"\nhistory = 3", "integrator.history"),
     ] {
         let error = parse(&format!("[integrator]\n{keys}\n{CLOTH}")).unwrap_err();
         let message = error.to_string();
         assert!(message.contains(named), "{keys}: {message}");
+    }
+}
+
+#[test]
+fn the_step_key_names_the_minimiser_and_history_its_memory() {
+    for (keys, expected) in [
+        ("", Minimizer::Newton),
+        ("step = \"converged\"", Minimizer::Newton),
+        ("step = \"newton\"", Minimizer::Newton),
+        ("step = \"linearized\"", Minimizer::Linearized),
+        ("step = \"quasi-newton\"", Minimizer::quasi_newton()),
+        (
+            "step = \"quasi-newton\"\nhistory = 12",
+            Minimizer::QuasiNewton { history: 12 },
+        ),
+    ] {
+        let text = format!("[integrator]\n{keys}\n{CLOTH}");
+        let spec = parse(&text).unwrap().integrator;
+        let IntegratorSpec::Implicit { minimizer, .. } = spec else {
+            panic!("{keys}: {spec:?}");
+        };
+        assert_eq!(minimizer, expected, "{keys}");
     }
 }

@@ -123,7 +123,9 @@ impl SceneArgs {
         if let Some(n) = self.newton {
             settings.newton_iterations = n;
         }
-        settings.linearized |= self.linearized;
+        if self.linearized {
+            settings.minimizer = hooke_implicit::Minimizer::Linearized;
+        }
         settings
     }
 

@@ -3,7 +3,7 @@
 
 use std::ops::Range;
 
-use hooke_implicit::{ErrorControl, PcgSettings, Scheme};
+use hooke_implicit::{ErrorControl, Minimizer, PcgSettings, Scheme};
 use toml::Spanned;
 
 use super::error::{ErrorKind, SceneFileError, Source};
@@ -84,6 +84,7 @@ pub(crate) fn integrator(
     let implicit_only = [
         ("solver", t.solver.as_ref().map(Spanned::span)),
         ("step", t.step.as_ref().map(Spanned::span)),
+        ("history", t.history.as_ref().map(Spanned::span)),
         (
             "newton_iterations",
             t.newton_iterations.as_ref().map(Spanned::span),
@@ -263,18 +264,34 @@ fn implicit(
             ));
         }
     };
-    let linearized = match t.step.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
-        None | Some(("converged", _)) => false,
-        Some(("linearized", _)) => true,
+    let history = t
+        .history
+        .as_ref()
+        .map_or(Minimizer::HISTORY, |v| *v.get_ref());
+    let minimizer = match t.step.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
+        None | Some(("converged" | "newton", _)) => Minimizer::Newton,
+        Some(("quasi-newton", _)) => Minimizer::QuasiNewton { history },
+        Some(("linearized", _)) => Minimizer::Linearized,
         Some((other, span)) => {
             return Err(src.invalid(
                 span,
                 "integrator.step",
                 format!("\"{other}\""),
-                "\"converged\" or \"linearized\"",
+                "\"newton\" (or \"converged\"), \"quasi-newton\" or \"linearized\"",
             ));
         }
     };
+    if let (Some(h), false) = (
+        &t.history,
+        matches!(minimizer, Minimizer::QuasiNewton { .. }),
+    ) {
+        return Err(src.invalid(
+            h.span(),
+            "integrator.history",
+            "`history` without step = \"quasi-newton\"".to_owned(),
+            "`history` only with step = \"quasi-newton\"",
+        ));
+    }
     let value = |key: Option<&Spanned<f64>>| key.map(|v| *v.get_ref());
     let error_control = match (value(t.rtol.as_ref()), value(t.atol.as_ref())) {
         (None, None) => None,
@@ -296,7 +313,7 @@ fn implicit(
     Ok(IntegratorSpec::Implicit {
         scheme,
         solver,
-        linearized,
+        minimizer,
         newton_iterations: t
             .newton_iterations
             .as_ref()

@@ -1,0 +1,169 @@
+//! Work against precision of the implicit steps on one cloth, measured in
+//! one run: every variant's mean time and iterations per step and its
+//! error at `t = 0.5 s` against a backward-Euler run converged to `10⁻⁹`
+//! with Cholesky, computed in the same run.
+//!
+//! `cargo bench --bench work_precision [-- N …]` (default N = 50 100 200):
+//! the 1 m cloth of N × N particles, 1 kg, stretch / shear / bend
+//! 5000 / 500 / 50 N/m, no damping, two corners pinned, `dt = 1/60 s`,
+//! 30 steps from rest, no self-collision (fast mass-spring has none).
+//! Prints a Markdown table (`benches/README.md`).
+
+use std::io::Write;
+use std::time::Instant;
+
+use hooke::implicit::{FastMassSpring, Minimizer};
+use hooke::prelude::*;
+use hooke::scenes::{Corner, Mass};
+
+const DT: f64 = 1.0 / 60.0;
+const STEPS: usize = 30;
+
+fn cloth(n: usize) -> System {
+    let body = Cloth::grid(n, n)
+        .size(1.0, 1.0)
+        .mass(Mass::Total(1.0))
+        .stretch(5000.0)
+        .shear(500.0)
+        .bend(50.0)
+        .pin_corners([Corner::TopLeft, Corner::TopRight])
+        .build()
+        .unwrap()
+        .self_collision(false);
+    let mut b = SystemBuilder::new();
+    body.add_to(&mut b);
+    b.gravity([0.0, -9.81, 0.0]);
+    b.build().unwrap()
+}
+
+/// A variant: its label and a fresh integrator.
+type Variant = (String, Box<dyn Fn() -> Box<dyn Integrator>>);
+
+fn variants() -> Vec<Variant> {
+    let mut all: Vec<Variant> = Vec::new();
+    let newton = |tol: f64| {
+        move || -> Box<dyn Integrator> {
+            Box::new(Implicit::backward_euler().with_newton(100, tol).unwrap())
+        }
+    };
+    all.push((
+        "Newton, default (1e-4, auto)".into(),
+        Box::new(newton(1e-4)),
+    ));
+    all.push(("Newton, 1e-2".into(), Box::new(newton(1e-2))));
+    all.push((
+        "linearized".into(),
+        Box::new(|| Box::new(Implicit::backward_euler().linearized())),
+    ));
+    for iterations in [10, 100] {
+        all.push((
+            format!("fast mass-spring, {iterations}"),
+            Box::new(move || Box::new(FastMassSpring::new(iterations).unwrap())),
+        ));
+    }
+    for iterations in [5, 10, 15, 30] {
+        all.push((
+            format!("quasi-Newton, {iterations} iterations"),
+            Box::new(move || {
+                Box::new(
+                    Implicit::backward_euler()
+                        .with_minimizer(Minimizer::quasi_newton())
+                        .with_newton(iterations, 1e-12)
+                        .unwrap()
+                        .with_max_halvings(0),
+                )
+            }),
+        ));
+    }
+    for tol in [1e-1, 3e-2, 1e-2, 1e-3] {
+        all.push((
+            format!("quasi-Newton, {tol:e}"),
+            Box::new(move || {
+                Box::new(
+                    Implicit::backward_euler()
+                        .with_minimizer(Minimizer::quasi_newton())
+                        .with_newton(1000, tol)
+                        .unwrap(),
+                )
+            }),
+        ));
+    }
+    for history in [2, 10] {
+        all.push((
+            format!("quasi-Newton, 1e-2, history {history}"),
+            Box::new(move || {
+                Box::new(
+                    Implicit::backward_euler()
+                        .with_minimizer(Minimizer::QuasiNewton { history })
+                        .with_newton(1000, 1e-2)
+                        .unwrap(),
+                )
+            }),
+        ));
+    }
+    all
+}
+
+/// Runs `integrator` for [`STEPS`] steps; returns the final positions, the
+/// mean seconds per step, the mean iterations per step and the largest
+/// energy above the start.
+fn run(system: &System, integrator: &mut dyn Integrator) -> (Vec<Vec3>, f64, f64, f64) {
+    let mut state = system.initial_state();
+    let start = system.energy(&state).unwrap().total();
+    let (mut iterations, mut rise) = (0, f64::NEG_INFINITY);
+    let clock = Instant::now();
+    for _ in 0..STEPS {
+        let report = integrator.step(system, &mut state, DT).unwrap();
+        iterations += report.newton_iterations;
+        rise = rise.max(system.energy(&state).unwrap().total() - start);
+    }
+    let seconds = clock.elapsed().as_secs_f64() / STEPS as f64;
+    let x = state.positions().to_vec();
+    (x, seconds, iterations as f64 / STEPS as f64, rise)
+}
+
+fn main() -> std::io::Result<()> {
+    let mut out = std::io::stdout().lock();
+    let sizes: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.parse().ok())
+        .collect();
+    let sizes = if sizes.is_empty() {
+        vec![50, 100, 200]
+    } else {
+        sizes
+    };
+    writeln!(
+        out,
+        "| N | step | ms per step | iterations per step | error at 0.5 s | largest E − E₀ |"
+    )?;
+    writeln!(out, "|---|---|---|---|---|---|")?;
+    for n in sizes {
+        let system = cloth(n);
+        let mut reference = Implicit::backward_euler()
+            .with_solver(LinearSolver::Cholesky)
+            .with_newton(1000, 1e-9)
+            .unwrap();
+        let (exact, seconds, iterations, _) = run(&system, &mut reference);
+        writeln!(
+            out,
+            "| {n} | reference (Newton, Cholesky, 1e-9) | {:.1} | {iterations:.1} | — | — |",
+            1e3 * seconds
+        )?;
+        for (label, make) in variants() {
+            let mut integrator = make();
+            let (x, seconds, iterations, rise) = run(&system, integrator.as_mut());
+            let error = x
+                .iter()
+                .zip(&exact)
+                .map(|(a, b)| (a - b).norm())
+                .fold(0.0, f64::max);
+            writeln!(
+                out,
+                "| {n} | {label} | {:.1} | {iterations:.1} | {error:.2e} m | {rise:.1e} J |",
+                1e3 * seconds
+            )?;
+        }
+    }
+    Ok(())
+}
