@@ -58,10 +58,17 @@ fn stability_writes_cells_limits_and_the_heat_map() {
             "dt",
             "stable",
             "max_energy_ratio",
+            "max_energy_gain",
             "h_omega",
             "wall_s",
         ] {
             assert!(cell.get(key).is_some(), "{key} in {cell}");
+        }
+        // Backward Euler damps the oscillator: it never gains energy.
+        if cell["integrator"] == "backward-euler" {
+            let gain = cell["max_energy_gain"].as_f64().unwrap();
+            assert!(gain <= 1e-9, "{cell}");
+            assert!(cell["max_energy_ratio"].as_f64().unwrap() <= 1.0 + 1e-9);
         }
         // Symplectic Euler is stable exactly below h·ω = 2.
         if cell["integrator"] == "symplectic-euler" {
@@ -81,6 +88,15 @@ fn stability_writes_cells_limits_and_the_heat_map() {
     assert_eq!(limit("backward-euler"), None);
     assert!(stdout.contains("stability.png"), "{stdout}");
     assert_png(&out.join("stability.png"));
+    let csv = std::fs::read_to_string(out.join("stability.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let gain = header.iter().position(|&c| c == "max_energy_gain").unwrap();
+    assert_eq!(header[gain - 1], "max_energy_ratio");
+    for (row, cell) in csv.lines().skip(1).zip(cells) {
+        let field = row.split(',').nth(gain).unwrap();
+        let reported = cell["max_energy_gain"].as_f64().unwrap();
+        assert!((field.parse::<f64>().unwrap() - reported).abs() <= 1e-12 * reported.abs());
+    }
 }
 
 #[test]
