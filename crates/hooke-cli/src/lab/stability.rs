@@ -49,7 +49,7 @@ pub(crate) struct StabilityArgs {
 pub(crate) fn stability_command(args: &StabilityArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let scene = args.scene.scene()?;
     let mut options = StabilityOptions::for_scene(&scene);
-    options.settings = args.scene.settings(&scene);
+    options.settings = args.scene.settings(&scene)?;
     options.methods = args.scene.methods(&Method::ALL)?;
     options.scales.clone_from(&args.stiffness.0);
     options.dts.clone_from(&args.dt.0);
