@@ -1,5 +1,6 @@
 //! A soft cube of tetrahedra dropped on a floor bounces, wobbles and settles;
-//! backward Euler with contacts as constraints. Prints its height and energy.
+//! backward Euler with contacts as barrier terms of the step's potential. Prints
+//! its height and energy.
 //!
 //! `cargo run --release --example jelly_cube`
 #![allow(clippy::print_stdout)] // printing the summary is this program's job

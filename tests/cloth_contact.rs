@@ -1,8 +1,8 @@
 //! A cloth dropped on a sphere and on a floor comes to rest on it: no
 //! particle ends up inside an obstacle beyond the stated tolerance, the
 //! kinetic energy at the end is small, and resting particles do not jitter —
-//! with backward Euler (contacts as filter constraints) and with an explicit
-//! method (projection and velocity response).
+//! with backward Euler (contacts as barrier terms of its step's potential)
+//! and with an explicit method (projection and velocity response).
 
 use hooke::prelude::*;
 use hooke::scenes::{Cloth, Mass};

@@ -59,6 +59,15 @@ pub enum CliError {
         /// Why the scaled system is invalid.
         source: hooke_core::BuildError,
     },
+    /// `--pcg-tolerance` with a `--solver` that is not a PCG iteration.
+    #[error(
+        "--pcg-tolerance: solver \"{solver}\" takes no tolerance; the PCG solvers do: {}",
+        hooke_scenes::SolverSpec::iterative_names().join(", ")
+    )]
+    PcgTolerance {
+        /// The solver given.
+        solver: &'static str,
+    },
     /// `--methods` names no integrator.
     #[error(
         "--methods: no integrator \"{name}\"; one of {}",

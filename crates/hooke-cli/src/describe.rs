@@ -3,7 +3,7 @@
 use std::fmt::Write;
 
 use hooke_core::{Obstacle, Path, System, Vec3};
-use hooke_implicit::Minimizer;
+use hooke_implicit::{LinearSolver, Minimizer};
 use hooke_scenes::{IntegratorSpec, Scene, SceneBody, SolverSpec};
 
 use crate::cli_error::CliError;
@@ -89,7 +89,7 @@ pub fn describe(scene: &Scene) -> Result<String, CliError> {
         format!(
             "{}{}",
             integrator.name(),
-            integrator_parameters(&scene.integrator)
+            integrator_parameters(&scene.integrator, system.particle_count())
         ),
     );
     let timing = scene.timing;
@@ -207,7 +207,8 @@ fn obstacle_line(obstacle: &Obstacle) -> String {
     )
 }
 
-fn integrator_parameters(spec: &IntegratorSpec) -> String {
+/// The parameters of `spec` for a system of `particles` particles.
+fn integrator_parameters(spec: &IntegratorSpec, particles: usize) -> String {
     match *spec {
         IntegratorSpec::Explicit(_) => String::new(),
         IntegratorSpec::Adaptive { rtol, atol } => format!(", rtol {rtol}, atol {atol}"),
@@ -235,7 +236,14 @@ fn integrator_parameters(spec: &IntegratorSpec) -> String {
             let strict = if strict { ", strict" } else { "" };
             let solver = match solver {
                 SolverSpec::Cholesky => "sparse Cholesky".to_owned(),
-                SolverSpec::Auto => "Cholesky or multigrid PCG by size".to_owned(),
+                SolverSpec::Auto if particles < LinearSolver::AUTO_TRIAL_PARTICLES => format!(
+                    "auto: sparse Cholesky (below {} particles)",
+                    LinearSolver::AUTO_TRIAL_PARTICLES
+                ),
+                SolverSpec::Auto => "auto: sparse Cholesky, multigrid PCG or block-Jacobi PCG, \
+                     whichever a timed trial at the first solve (and, when two come close, \
+                     the next two steps) finds fastest"
+                    .to_owned(),
                 SolverSpec::Amg {
                     tolerance,
                     max_iterations,

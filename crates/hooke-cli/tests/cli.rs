@@ -97,6 +97,41 @@ fn check_describes_a_shipped_scene() {
     assert!(out.trim_end().ends_with(": ok"), "{out}");
 }
 
+/// `solver = "auto"` (the default) is described as what it does at the
+/// scene's size: the factorization below the trial's particle count, a
+/// timed trial from there on.
+#[test]
+fn check_says_what_the_automatic_solver_does_at_the_scenes_size() {
+    let threshold = hooke_implicit::LinearSolver::AUTO_TRIAL_PARTICLES;
+    let dir = tempfile::tempdir().unwrap();
+    // cloth-on-sphere has 900 particles and no solver key; a square cloth
+    // of `side` columns and rows has side² particles.
+    let side = (threshold as f64).sqrt().ceil() as usize;
+    assert!(side * side >= threshold && 900 < threshold);
+    let path = dir.path().join("large.toml");
+    let text = format!(
+        "name = \"large\"\n\n[[bodies]]\ntype = \"cloth\"\nname = \"cloth\"\n\
+         columns = {side}\nrows = {side}\nsize = [1.0, 1.0]\nmass = 1.0\n\
+         stretch = {{ stiffness = 100.0 }}\n"
+    );
+    std::fs::write(&path, text).unwrap();
+    for (scene, expected) in [
+        (
+            shipped("cloth-on-sphere.toml"),
+            format!("auto: sparse Cholesky (below {threshold} particles)"),
+        ),
+        (
+            path.to_str().unwrap().to_owned(),
+            "auto: sparse Cholesky, multigrid PCG or block-Jacobi PCG, whichever a timed trial"
+                .to_owned(),
+        ),
+    ] {
+        let (code, out, err) = hooke(&["check", &scene]);
+        assert_eq!(code, ExitCode::SUCCESS, "{err}");
+        assert!(out.contains(&expected), "{out}");
+    }
+}
+
 #[test]
 fn check_rejects_a_malformed_file_with_its_line_and_key() {
     let dir = tempfile::tempdir().unwrap();

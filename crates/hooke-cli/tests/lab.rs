@@ -58,10 +58,17 @@ fn stability_writes_cells_limits_and_the_heat_map() {
             "dt",
             "stable",
             "max_energy_ratio",
+            "max_energy_gain",
             "h_omega",
             "wall_s",
         ] {
             assert!(cell.get(key).is_some(), "{key} in {cell}");
+        }
+        // Backward Euler damps the oscillator: it never gains energy.
+        if cell["integrator"] == "backward-euler" {
+            let gain = cell["max_energy_gain"].as_f64().unwrap();
+            assert!(gain <= 1e-9, "{cell}");
+            assert!(cell["max_energy_ratio"].as_f64().unwrap() <= 1.0 + 1e-9);
         }
         // Symplectic Euler is stable exactly below h·ω = 2.
         if cell["integrator"] == "symplectic-euler" {
@@ -81,6 +88,15 @@ fn stability_writes_cells_limits_and_the_heat_map() {
     assert_eq!(limit("backward-euler"), None);
     assert!(stdout.contains("stability.png"), "{stdout}");
     assert_png(&out.join("stability.png"));
+    let csv = std::fs::read_to_string(out.join("stability.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let gain = header.iter().position(|&c| c == "max_energy_gain").unwrap();
+    assert_eq!(header[gain - 1], "max_energy_ratio");
+    for (row, cell) in csv.lines().skip(1).zip(cells) {
+        let field = row.split(',').nth(gain).unwrap();
+        let reported = cell["max_energy_gain"].as_f64().unwrap();
+        assert!((field.parse::<f64>().unwrap() - reported).abs() <= 1e-12 * reported.abs());
+    }
 }
 
 #[test]
@@ -176,6 +192,18 @@ fn bad_lab_options_are_errors_naming_them() {
             ],
             "scale-stiffness",
         ),
+        (
+            vec![
+                "stability",
+                "--builtin",
+                "oscillator",
+                "--solver",
+                "cholesky",
+                "--pcg-tolerance",
+                "1e-3",
+            ],
+            "--pcg-tolerance: solver \"cholesky\" takes no tolerance",
+        ),
     ] {
         let dir = tempfile::tempdir().unwrap();
         let mut args = args;
@@ -188,4 +216,62 @@ fn bad_lab_options_are_errors_naming_them() {
     let (code, _, stderr) = hooke(&["stability", "--dt", "0:1:3"]);
     assert_eq!(code, ExitCode::from(2));
     assert!(stderr.contains("FIRST:LAST:COUNT"), "{stderr}");
+}
+
+/// `--solver` offers every value of the scene file's `solver` key, and
+/// only those, in every lab command.
+#[test]
+fn every_lab_command_offers_the_scene_files_solvers() {
+    let names = hooke_scenes::SolverSpec::names();
+    let listed = format!("[possible values: {}]", names.join(", "));
+    for command in ["stability", "accuracy"] {
+        let (code, stdout, _) = hooke(&[command, "--help"]);
+        assert_eq!(code, ExitCode::SUCCESS);
+        let line = stdout
+            .lines()
+            .find(|l| l.trim_start().starts_with("--solver"))
+            .unwrap();
+        assert!(line.ends_with(&listed), "{command}: {line}");
+        let (code, _, stderr) = hooke(&[command, "--solver", "multigrid"]);
+        assert_eq!(code, ExitCode::from(2), "{command}: {stderr}");
+        for name in names {
+            assert!(stderr.contains(name), "{command}: {stderr}");
+        }
+    }
+    // Each parses as the scene file reads it; a PCG iteration takes the
+    // tolerance, and --pcg-tolerance needs a --solver.
+    for name in names {
+        let dir = tempfile::tempdir().unwrap();
+        let mut args = vec![
+            "stability",
+            "--builtin",
+            "oscillator",
+            "--methods",
+            "backward-euler",
+            "--stiffness",
+            "1",
+            "--dt",
+            "0.1",
+            "--duration",
+            "1",
+            "--min-steps",
+            "10",
+            "--solver",
+            name,
+            "--out",
+            dir.path().to_str().unwrap(),
+            "-q",
+        ];
+        let tolerance = hooke_scenes::SolverSpec::iterative_names().contains(&name);
+        if tolerance {
+            args.extend(["--pcg-tolerance", "1e-9"]);
+        }
+        let (code, stdout, stderr) = hooke(&args);
+        assert_eq!(code, ExitCode::SUCCESS, "{name}: {stdout}\n{stderr}");
+        let report = json(&dir.path().join("stability.json"));
+        assert_eq!(report["cells"][0]["stable"], true, "{name}");
+    }
+    let (code, _, stderr) = hooke(&["accuracy", "--pcg-tolerance", "1e-3"]);
+    assert_eq!(code, ExitCode::from(2));
+    assert!(stderr.contains("--solver"), "{stderr}");
 }

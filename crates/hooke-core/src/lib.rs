@@ -15,9 +15,10 @@
 //!   [`System::end_step`] (the explicit ones through
 //!   [`StepBuffers::finish`]), which places the scripted pins and resolves
 //!   contacts (push out along the normal, then the normal and friction
-//!   impulses: [`respond_to_contact`]); the implicit integrators also hold
-//!   contacts as constraints inside their solve. A system with neither runs
-//!   none of this code.
+//!   impulses: [`respond_to_contact`]); the implicit integrators also keep
+//!   particles off the obstacles inside their step, by barrier terms of the
+//!   potential it minimises (`hooke-implicit`'s `contact` module). A system
+//!   with neither runs none of this code.
 //!
 //! The pieces:
 //!

@@ -270,7 +270,9 @@ pub(crate) struct Work {
 }
 
 impl Implicit {
-    /// Backward Euler with sparse Cholesky, converged Newton steps (at most
+    /// Backward Euler with the automatic solver choice
+    /// ([`LinearSolver::Auto`]: sparse Cholesky on small systems, otherwise
+    /// whichever solver a timed trial finds fastest), converged Newton steps (at most
     /// [`Implicit::NEWTON_ITERATIONS`] solves, tolerance
     /// [`Implicit::NEWTON_TOLERANCE`]), step rejection down to `h/2¹⁰`,
     /// clamped compressed springs, fixed substeps, non-strict.

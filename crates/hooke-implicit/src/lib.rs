@@ -17,8 +17,9 @@
 //!    smoothed-aggregation multigrid V-cycle ([`Amg`], the [`amg`] module) or
 //!    by a lagged Cholesky factor, or [`SparseCholesky`] (faer, symbolic
 //!    analysis reused) on the same filtered system; by default
-//!    ([`LinearSolver::Auto`]) Cholesky for small systems and multigrid for
-//!    large ones.
+//!    ([`LinearSolver::Auto`]) Cholesky for small systems and, for larger
+//!    ones, whichever of Cholesky, multigrid and block-Jacobi PCG a timed
+//!    trial finds fastest.
 //! 3. **Newton iterations to convergence** on the incremental potential
 //!    `Φ`, every iterate accepted through a line search that lowers `Φ`,
 //!    stopped by a scale-free rule on the Newton decrement (default

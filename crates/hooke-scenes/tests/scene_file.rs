@@ -52,6 +52,37 @@ fn every_builtin_loads_like_its_file() {
     }
 }
 
+/// `docs/scene-format.md` shows shipped scenes under headings naming their
+/// files (`` ### …: `scenes/NAME.toml` ``): each shown text is the file's.
+#[test]
+fn the_format_documents_shipped_scenes_as_they_are() {
+    let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scene-format.md");
+    let docs = std::fs::read_to_string(docs).unwrap();
+    let mut shown = 0;
+    for section in docs.split("\n### ").skip(1) {
+        let heading = section.lines().next().unwrap();
+        let Some(name) = heading
+            .strip_suffix(".toml`")
+            .and_then(|h| h.rsplit_once("`scenes/"))
+            .map(|(_, name)| name)
+        else {
+            continue;
+        };
+        let body = section
+            .split_once("```toml\n")
+            .and_then(|(_, rest)| rest.split_once("```"))
+            .map(|(body, _)| body)
+            .unwrap_or_else(|| panic!("no TOML block under {heading}"));
+        let file = std::fs::read_to_string(scenes_dir().join(format!("{name}.toml"))).unwrap();
+        assert!(
+            body == file,
+            "{heading}: the docs show another text than the file"
+        );
+        shown += 1;
+    }
+    assert!(shown >= 10, "{shown} scenes shown");
+}
+
 #[test]
 fn an_unknown_builtin_lists_the_names() {
     let message = builtin::load("nope").unwrap_err().to_string();

@@ -10,7 +10,7 @@ use hooke_scenes::{IntegratorSpec, Method, SolverSpec};
 use common::{CLOTH, parse};
 
 #[test]
-fn defaults_are_converged_backward_euler_with_cholesky() {
+fn defaults_are_converged_backward_euler_with_the_automatic_solver() {
     let scene = parse(CLOTH).unwrap();
     assert_eq!(scene.integrator, IntegratorSpec::backward_euler());
     assert!((scene.timing.frame_rate - 60.0).abs() < 1e-12);
@@ -79,7 +79,25 @@ fn solvers_and_the_fast_mass_spring_iterations_are_read_and_checked() {
         SolverSpec::LaggedCholesky { .. }
     ));
     let message = spec("solver = \"multigrid\"").unwrap_err().to_string();
-    assert!(message.contains("\"amg\""), "{message}");
+    for name in SolverSpec::names() {
+        assert!(message.contains(&format!("\"{name}\"")), "{message}");
+    }
+    // Every name of the table reads back as its solver, PCG's keys going
+    // to the iterative ones and refused by the others.
+    for name in SolverSpec::names() {
+        let keys = format!("solver = \"{name}\"\ntolerance = 1e-7\nmax_iterations = 30");
+        match SolverSpec::from_name(name, 1e-7, 30) {
+            Some(expected) if expected.is_iterative() => assert_eq!(solver(&keys), expected),
+            Some(expected) => {
+                assert_eq!(solver(&format!("solver = \"{name}\"")), expected);
+                let message = spec(&keys).unwrap_err().to_string();
+                for iterative in SolverSpec::iterative_names() {
+                    assert!(message.contains(&format!("\"{iterative}\"")), "{message}");
+                }
+            }
+            None => panic!("{name} is not in the table"),
+        }
+    }
     assert_eq!(
         spec("method = \"fast-mass-spring\"\niterations = 3")
             .unwrap()

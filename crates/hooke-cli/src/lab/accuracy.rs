@@ -53,7 +53,7 @@ pub(crate) struct AccuracyArgs {
 pub(crate) fn accuracy_command(args: &AccuracyArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let scene = args.scene.scene()?;
     let mut options = AccuracyOptions::for_scene(&scene);
-    options.settings = args.scene.settings(&scene);
+    options.settings = args.scene.settings(&scene)?;
     options.methods = args.scene.methods(&options.methods)?;
     if let Some(dts) = &args.dt {
         options.dts.clone_from(&dts.0);

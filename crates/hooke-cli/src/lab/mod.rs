@@ -10,6 +10,8 @@ mod stability;
 use std::path::PathBuf;
 
 use clap::Args;
+use clap::builder::{PossibleValuesParser, TypedValueParser};
+use hooke_implicit::PcgSettings;
 use hooke_lab::{LabError, Method, Range, Shard};
 use hooke_scenes::{Scene, SolverSpec};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -67,13 +69,15 @@ pub(crate) struct SceneArgs {
     /// Multiply every spring's stiffness by SCALE first.
     #[arg(long = "scale-stiffness", value_name = "SCALE")]
     scale_stiffness: Option<f64>,
-    /// The implicit methods' linear solver (default: the scene's, else
-    /// cholesky).
-    #[arg(long, value_name = "SOLVER")]
-    solver: Option<SolverArg>,
-    /// The relative residual PCG stops at, with --solver pcg.
-    #[arg(long, value_name = "TOL", default_value_t = hooke_implicit::PcgSettings::default().tolerance())]
-    pcg_tolerance: f64,
+    /// The implicit methods' linear solver, any value of the scene file's
+    /// `solver` key (default: the scene's, if it runs an implicit method,
+    /// else cholesky).
+    #[arg(long, value_name = "SOLVER", value_parser = solver_parser())]
+    solver: Option<SolverSpec>,
+    /// The relative residual at which the --solver stops, when it is a PCG
+    /// iteration (default: PCG's own).
+    #[arg(long, value_name = "TOL", requires = "solver")]
+    pcg_tolerance: Option<f64>,
     /// The implicit methods' cap on Newton iterations per (sub)step
     /// (default: the scene's, else the integrator's).
     #[arg(long, value_name = "N")]
@@ -84,13 +88,15 @@ pub(crate) struct SceneArgs {
     linearized: bool,
 }
 
-/// `--solver`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub(crate) enum SolverArg {
-    /// Sparse Cholesky.
-    Cholesky,
-    /// Block-Jacobi PCG to the relative residual --pcg-tolerance.
-    Pcg,
+/// `--solver`'s values: the names of the scene file's `solver` key, from
+/// its table ([`SolverSpec::names`]), each read as that solver at PCG's
+/// default settings.
+fn solver_parser() -> impl TypedValueParser<Value = SolverSpec> {
+    PossibleValuesParser::new(SolverSpec::names()).try_map(|name| {
+        let defaults = PcgSettings::default();
+        SolverSpec::from_name(&name, defaults.tolerance(), defaults.max_iterations())
+            .ok_or_else(|| format!("no solver \"{name}\""))
+    })
 }
 
 impl SceneArgs {
@@ -105,20 +111,26 @@ impl SceneArgs {
         Ok(scene)
     }
 
-    /// The lab's method settings for `scene`, with `--solver` and
-    /// `--newton` and `--linearized` applied.
-    fn settings(&self, scene: &Scene) -> hooke_lab::Settings {
+    /// The lab's method settings for `scene`, with `--solver`,
+    /// `--pcg-tolerance`, `--newton` and `--linearized` applied.
+    ///
+    /// # Errors
+    /// [`CliError::PcgTolerance`] for `--pcg-tolerance` with a solver that
+    /// is not a PCG iteration.
+    fn settings(&self, scene: &Scene) -> Result<hooke_lab::Settings, CliError> {
         let mut settings = hooke_lab::Settings::from_scene(&scene.integrator);
-        match self.solver {
-            Some(SolverArg::Cholesky) => settings.solver = SolverSpec::Cholesky,
-            Some(SolverArg::Pcg) => {
-                let defaults = hooke_implicit::PcgSettings::default();
-                settings.solver = SolverSpec::Pcg {
-                    tolerance: self.pcg_tolerance,
-                    max_iterations: defaults.max_iterations(),
-                };
-            }
-            None => {}
+        if let Some(solver) = self.solver {
+            settings.solver = match self.pcg_tolerance {
+                None => solver,
+                Some(tolerance) if solver.is_iterative() => {
+                    solver.with_pcg(tolerance, PcgSettings::default().max_iterations())
+                }
+                Some(_) => {
+                    return Err(CliError::PcgTolerance {
+                        solver: solver.name(),
+                    });
+                }
+            };
         }
         if let Some(n) = self.newton {
             settings.newton_iterations = n;
@@ -126,7 +138,7 @@ impl SceneArgs {
         if self.linearized {
             settings.minimizer = hooke_implicit::Minimizer::Linearized;
         }
-        settings
+        Ok(settings)
     }
 
     /// The methods named, or `all` when none is.
@@ -166,5 +178,52 @@ impl SceneArgs {
         });
         bar.finish_and_clear();
         Ok(result?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+
+    /// A command of the lab's scene arguments alone.
+    #[derive(Debug, Parser)]
+    struct Lab {
+        #[command(flatten)]
+        scene: SceneArgs,
+    }
+
+    /// The settings `args` give the built-in oscillator, or why `args` do
+    /// not parse.
+    fn settings(args: &[&str]) -> Result<Result<hooke_lab::Settings, CliError>, clap::Error> {
+        let scene = hooke_scenes::builtin::load("oscillator").unwrap();
+        let lab = Lab::try_parse_from(std::iter::once("lab").chain(args.iter().copied()))?;
+        Ok(lab.scene.settings(&scene))
+    }
+
+    #[test]
+    fn solver_names_the_scene_files_solver_and_pcg_tolerance_sets_its_tolerance() {
+        let pcg = PcgSettings::default();
+        let solver = |args: &[&str]| settings(args).unwrap().unwrap().solver;
+        // The oscillator runs velocity Verlet: the implicit methods take
+        // the lab's default solver.
+        assert_eq!(solver(&[]), SolverSpec::Cholesky);
+        for name in SolverSpec::names() {
+            let expected = SolverSpec::from_name(name, pcg.tolerance(), pcg.max_iterations());
+            assert_eq!(Some(solver(&["--solver", name])), expected);
+            let tightened = settings(&["--solver", name, "--pcg-tolerance", "1e-9"]).unwrap();
+            match expected {
+                Some(spec) if spec.is_iterative() => assert_eq!(
+                    tightened.unwrap().solver,
+                    spec.with_pcg(1e-9, pcg.max_iterations())
+                ),
+                _ => assert!(
+                    matches!(tightened, Err(CliError::PcgTolerance { solver }) if solver == name)
+                ),
+            }
+        }
+        assert!(settings(&["--solver", "multigrid"]).is_err());
+        assert!(settings(&["--pcg-tolerance", "1e-9"]).is_err());
     }
 }

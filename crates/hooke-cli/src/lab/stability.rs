@@ -30,8 +30,9 @@ pub(crate) struct StabilityArgs {
     /// Fewest steps per cell.
     #[arg(long, value_name = "N", default_value_t = 1000)]
     min_steps: usize,
-    /// A cell is stable while its energy stays below this many times its
-    /// initial energy plus the work done on it.
+    /// A cell is stable while its energy ratio 1 + G/(E(0) + max W) stays
+    /// at or below FACTOR, where G = E − E(0) − W is the energy gained over
+    /// the initial energy E(0) plus the work W of gravity and pins.
     #[arg(long, value_name = "FACTOR", default_value_t = hooke_lab::stability::DEFAULT_ENERGY_BOUND)]
     energy_bound: f64,
     /// Also search each integrator's largest stable timestep (within the
@@ -48,7 +49,7 @@ pub(crate) struct StabilityArgs {
 pub(crate) fn stability_command(args: &StabilityArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let scene = args.scene.scene()?;
     let mut options = StabilityOptions::for_scene(&scene);
-    options.settings = args.scene.settings(&scene);
+    options.settings = args.scene.settings(&scene)?;
     options.methods = args.scene.methods(&Method::ALL)?;
     options.scales.clone_from(&args.stiffness.0);
     options.dts.clone_from(&args.dt.0);
@@ -123,7 +124,7 @@ fn heat_maps(report: &StabilityReport) -> HeatMaps {
     }
     HeatMaps {
         title: format!(
-            "{}: stable cells (energy within {}x budget) and h·ω_max = 2",
+            "{}: stable cells (energy ratio at most {}) and h·ω_max = 2",
             report.scene, report.energy_bound
         ),
         panels,

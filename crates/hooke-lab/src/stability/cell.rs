@@ -17,8 +17,11 @@ pub struct CellRun {
     /// Whether every step succeeded and the energy ratio stayed within
     /// the bound.
     pub stable: bool,
-    /// The largest energy ratio seen.
+    /// The largest energy ratio seen, `1 + G(t) / A(t)` (see
+    /// [`EnergyBudget`]).
     pub max_energy_ratio: f64,
+    /// The largest energy gain `G(t) = E(t) − E(0) − W(t)` seen, J.
+    pub max_energy_gain: f64,
     /// Wall time inside the integrator's steps, s.
     pub wall_s: f64,
     /// Steps taken.
@@ -48,8 +51,9 @@ pub fn run_cell(
     let stopped = match (run.failure(), budget.exceeded()) {
         (Some(error), _) => Some(error.to_string()),
         (None, true) => Some(format!(
-            "energy ratio {:.3e} above the bound {energy_bound} at t = {:.6e} s",
+            "energy ratio {:.3e} above the bound {energy_bound} (a gain of {:.3e} J) at t = {:.6e} s",
             budget.max_ratio(),
+            budget.max_gain().0,
             state.time()
         )),
         (None, false) => None,
@@ -57,6 +61,7 @@ pub fn run_cell(
     Ok(CellRun {
         stable: stopped.is_none(),
         max_energy_ratio: budget.max_ratio(),
+        max_energy_gain: budget.max_gain().0,
         wall_s: run.wall.as_secs_f64(),
         steps: run.steps,
         stopped,

@@ -9,6 +9,7 @@ use toml::Spanned;
 use super::error::{ErrorKind, SceneFileError, Source};
 use super::schema::{IntegratorTable, Simulation};
 use super::values::positive;
+use crate::integrator::quoted_list;
 use crate::{IntegratorSpec, Method, SolverSpec, Timing};
 
 /// Defaults of `[simulation]`: 5 s at 1/60 s steps, 60 frames per second.
@@ -108,6 +109,7 @@ pub(crate) fn integrator(
         ("atol", t.atol.as_ref().map(Spanned::span)),
     ];
     let fast_only = [("iterations", t.iterations.as_ref().map(Spanned::span))];
+    let iterative_solvers = format!("solver {}", quoted_list(SolverSpec::iterative_names()));
     let fast_name = format!("method \"{}\"", Method::FastMassSpring);
     let reject = |keys: &[(&str, Option<Range<usize>>)], applies_to: &str| {
         keys.iter()
@@ -144,13 +146,13 @@ pub(crate) fn integrator(
             ..
         } => {
             reject(&fast_only, &fast_name)?;
-            let reject_pcg = || reject(&pcg_only, "solver \"pcg\"");
+            let reject_pcg = || reject(&pcg_only, &iterative_solvers);
             let defaults = (newton_iterations, newton_tolerance, max_halvings, strict);
             implicit(src, t, scheme, defaults, reject_pcg)?
         }
         IntegratorSpec::Adaptive { rtol, atol } => {
             reject(&implicit_only, &implicit_names)?;
-            reject(&pcg_only, "solver \"pcg\"")?;
+            reject(&pcg_only, &iterative_solvers)?;
             reject(&fast_only, &fast_name)?;
             IntegratorSpec::Adaptive {
                 rtol: t.rtol.as_ref().map_or(rtol, |v| *v.get_ref()),
@@ -159,14 +161,14 @@ pub(crate) fn integrator(
         }
         explicit @ IntegratorSpec::Explicit(_) => {
             reject(&implicit_only, &implicit_names)?;
-            reject(&pcg_only, "solver \"pcg\"")?;
+            reject(&pcg_only, &iterative_solvers)?;
             reject(&tolerances, &error_controlled)?;
             reject(&fast_only, &fast_name)?;
             explicit
         }
         IntegratorSpec::FastMassSpring { iterations } => {
             reject(&implicit_only, &implicit_names)?;
-            reject(&pcg_only, "solver \"pcg\"")?;
+            reject(&pcg_only, &iterative_solvers)?;
             reject(&tolerances, &error_controlled)?;
             IntegratorSpec::FastMassSpring {
                 iterations: t.iterations.as_ref().map_or(iterations, |v| *v.get_ref()),
@@ -210,9 +212,9 @@ pub(crate) fn integrator(
 
 /// The keys of an implicit method's table over the defaults `(newton
 /// iterations, newton tolerance, max halvings, strict)` of `scheme`;
-/// `reject_pcg` fails if the table has
-/// PCG's keys, for Cholesky. `rtol` or `atol` turn error control on, the
-/// one not given at its default ([`ErrorControl::RELATIVE`],
+/// `reject_pcg` fails if the table has PCG's keys, for a solver that is
+/// not iterative. `rtol` or `atol` turn error control on, the one not
+/// given at its default ([`ErrorControl::RELATIVE`],
 /// [`ErrorControl::ABSOLUTE`]).
 fn implicit(
     src: &Source<'_>,
@@ -221,49 +223,31 @@ fn implicit(
     (newton_iterations, newton_tolerance, max_halvings, strict): (usize, f64, u32, bool),
     reject_pcg: impl FnOnce() -> Result<(), SceneFileError>,
 ) -> Result<IntegratorSpec, SceneFileError> {
-    let solver = match t.solver.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
-        None | Some(("auto", _)) => {
-            reject_pcg()?;
-            SolverSpec::Auto
-        }
-        Some(("cholesky", _)) => {
-            reject_pcg()?;
-            SolverSpec::Cholesky
-        }
-        Some((iterative @ ("pcg" | "amg" | "lagged-cholesky"), _)) => {
-            let defaults = PcgSettings::default();
-            let tolerance = t
-                .tolerance
-                .as_ref()
-                .map_or(defaults.tolerance(), |v| *v.get_ref());
-            let max_iterations = t
-                .max_iterations
-                .as_ref()
-                .map_or(defaults.max_iterations(), |v| *v.get_ref());
-            match iterative {
-                "pcg" => SolverSpec::Pcg {
-                    tolerance,
-                    max_iterations,
-                },
-                "amg" => SolverSpec::Amg {
-                    tolerance,
-                    max_iterations,
-                },
-                _ => SolverSpec::LaggedCholesky {
-                    tolerance,
-                    max_iterations,
-                },
-            }
-        }
-        Some((other, span)) => {
-            return Err(src.invalid(
-                span,
-                "integrator.solver",
-                format!("\"{other}\""),
-                "\"auto\", \"cholesky\", \"pcg\", \"amg\" or \"lagged-cholesky\"",
-            ));
+    let defaults = PcgSettings::default();
+    let tolerance = t
+        .tolerance
+        .as_ref()
+        .map_or(defaults.tolerance(), |v| *v.get_ref());
+    let max_iterations = t
+        .max_iterations
+        .as_ref()
+        .map_or(defaults.max_iterations(), |v| *v.get_ref());
+    let solver = match &t.solver {
+        None => SolverSpec::Auto,
+        Some(name) => {
+            SolverSpec::from_name(name.get_ref(), tolerance, max_iterations).ok_or_else(|| {
+                src.invalid(
+                    name.span(),
+                    "integrator.solver",
+                    format!("\"{}\"", name.get_ref()),
+                    quoted_list(SolverSpec::names()),
+                )
+            })?
         }
     };
+    if !solver.is_iterative() {
+        reject_pcg()?;
+    }
     let history = t
         .history
         .as_ref()

@@ -47,7 +47,7 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 pub use heat_map::{
-    Cell, HEAT_MAP_COLUMNS, HeatMapPanel, HeatMaps, heat_maps_size, write_heat_maps,
+    Cell, GAIN_FLOOR, HEAT_MAP_COLUMNS, HeatMapPanel, HeatMaps, heat_maps_size, write_heat_maps,
 };
 pub use log_log::{LOG_LOG_HEIGHT, LOG_LOG_WIDTH, LogLogPlot, Reference, Series, write_log_log};
 

@@ -9,7 +9,7 @@ use super::{Cell, HeatMapPanel, HeatMaps};
 
 /// Unstable (or non-finite) cells.
 pub(in crate::plot) const UNSTABLE: ColorU8 = rgb(215, 48, 39);
-/// Stable cells, from the smallest energy growth to the largest.
+/// Stable cells, from no energy gain to the largest.
 const STABLE_LIGHT: [f32; 3] = [222.0, 235.0, 247.0];
 const STABLE_DARK: [f32; 3] = [33.0, 102.0, 172.0];
 /// Checks that the panel's grid can be drawn.
@@ -45,10 +45,17 @@ fn check_axis(axis: &'static str, values: &[f64]) -> Result<(), GridError> {
     Ok(())
 }
 
-/// The colour scale of stable cells.
+/// The energy gain, as a fraction of the allowance (`max_energy_ratio −
+/// 1`), up to which a stable cell is drawn in the lightest shade: below
+/// it lie the exact motion's zero and the rounding of long runs.
+pub const GAIN_FLOOR: f64 = 1e-9;
+
+/// The colour scale of stable cells: the shade darkens with the log of the
+/// energy gain `max_energy_ratio − 1` from [`GAIN_FLOOR`] to the largest
+/// gain among the figure's stable cells.
 #[derive(Clone, Copy)]
 pub(super) struct Shade {
-    /// The log10(max_energy_ratio) drawn darkest.
+    /// The log10 of the gain drawn darkest (at least that of [`GAIN_FLOOR`]).
     pub(super) top_log: f64,
 }
 
@@ -59,9 +66,9 @@ impl Shade {
             .panels
             .iter()
             .flat_map(|p| p.cells.iter())
-            .filter(|c| c.stable && c.max_energy_ratio.is_finite())
-            .map(|c| c.max_energy_ratio.log10().max(0.0))
-            .fold(0.0, f64::max);
+            .filter(|c| c.stable)
+            .filter_map(|c| gain_log(c.max_energy_ratio))
+            .fold(GAIN_FLOOR.log10(), f64::max);
         Shade { top_log }
     }
 
@@ -70,17 +77,26 @@ impl Shade {
         if !cell.stable || !cell.max_energy_ratio.is_finite() {
             return UNSTABLE;
         }
-        let t = if self.top_log > 0.0 {
-            (cell.max_energy_ratio.log10() / self.top_log).clamp(0.0, 1.0)
-        } else {
-            0.0
+        let floor = GAIN_FLOOR.log10();
+        let t = match gain_log(cell.max_energy_ratio) {
+            Some(log) if self.top_log > floor => {
+                ((log - floor) / (self.top_log - floor)).clamp(0.0, 1.0)
+            }
+            _ => 0.0,
         };
         blend(t as f32)
     }
 }
 
+/// The log10 of the energy gain `ratio − 1` of a cell, when it is finite
+/// and above [`GAIN_FLOOR`].
+fn gain_log(ratio: f64) -> Option<f64> {
+    let gain = ratio - 1.0;
+    (gain.is_finite() && gain > GAIN_FLOOR).then(|| gain.log10())
+}
+
 /// The stable colour a fraction `t` of the way from light to dark.
-pub(super) fn blend(t: f32) -> ColorU8 {
+pub(in crate::plot) fn blend(t: f32) -> ColorU8 {
     let channel =
         |i: usize| (STABLE_LIGHT[i] + t * (STABLE_DARK[i] - STABLE_LIGHT[i])).round() as u8;
     rgb(channel(0), channel(1), channel(2))

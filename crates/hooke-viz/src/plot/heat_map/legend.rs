@@ -3,7 +3,7 @@
 
 use crate::plot::canvas::{self, Align, Canvas, INK, TEXT};
 
-use super::cells::{Shade, UNSTABLE, blend};
+use super::cells::{GAIN_FLOOR, Shade, UNSTABLE, blend};
 use super::{LINE, LINE_WIDTH};
 
 /// The key drawn before a legend entry's text.
@@ -34,11 +34,12 @@ pub(super) const LEGEND_LINE: f32 = 28.0;
 
 /// The legend's entries.
 fn legend_entries(omega: Option<f64>, shade: Shade) -> Vec<(Key, String)> {
-    let top_ratio = crate::plot::format_value(10f64.powf(shade.top_log));
+    let floor = crate::plot::format_value(GAIN_FLOOR);
+    let top = crate::plot::format_value(10f64.powf(shade.top_log));
     let mut entries = vec![
         (
             Key::Ramp,
-            format!("stable, max energy ratio 1 to {top_ratio}"),
+            format!("stable, gain {floor} to {top} × E(0)+max W"),
         ),
         (Key::Unstable, "unstable or non-finite".to_owned()),
     ];

@@ -10,6 +10,7 @@ mod legend;
 use super::axis::LogAxis;
 use super::canvas::{self, Align, Canvas, INK, TEXT, TITLE, WHITE, rgb};
 use super::{PlotError, save};
+pub use cells::GAIN_FLOOR;
 use cells::{Shade, check_panel, edges};
 use legend::{LEGEND_LINE, draw_legend, legend_lines};
 
@@ -18,8 +19,10 @@ use legend::{LEGEND_LINE, draw_legend, legend_lines};
 pub struct Cell {
     /// Whether the run stayed bounded (as the caller judged it).
     pub stable: bool,
-    /// The largest energy ratio seen during the run (energy over initial
-    /// energy plus work done on the system, see `EnergyBudget`).
+    /// The largest energy ratio seen during the run, `1 + G/(E(0) + max W)`
+    /// with the energy gain `G = E − E(0) − W` over the initial energy and
+    /// the work done on the system (see `hooke_lab::EnergyBudget`): one for
+    /// the exact motion, below one where energy was dissipated.
     pub max_energy_ratio: f64,
 }
 
@@ -127,9 +130,11 @@ pub(super) fn plot_area(maps: &HeatMaps, index: usize) -> (f32, f32, f32, f32) {
 ///
 /// Each panel's cells span, in log scale, from half-way to the previous grid
 /// value to half-way to the next (a lone value gets a decade). Stable cells
-/// are blue, darker as log10(max_energy_ratio) grows from 0 to the largest
-/// value among the figure's stable cells (ratios below 1 are drawn as 1);
-/// unstable cells and cells whose ratio is not finite are red. A panel with no
+/// are blue, darker as the log10 of the energy gain `max_energy_ratio − 1`
+/// grows from that of [`GAIN_FLOOR`] (any smaller gain, or a loss, is drawn
+/// lightest) to the largest gain among the figure's stable cells, so that
+/// a gain of 10⁻⁵ of the allowance shows beside one of 10; unstable cells
+/// and cells whose ratio is not finite are red. A panel with no
 /// cells, or a figure with no panels, is drawn with a "no data" note.
 ///
 /// # Errors

@@ -4,7 +4,7 @@
 use tempfile::TempDir;
 
 use super::{NAMES, channels, keep, load, log_space, rgb_at};
-use crate::plot::heat_map::cells::{UNSTABLE, edges};
+use crate::plot::heat_map::cells::{UNSTABLE, blend, edges};
 use crate::plot::heat_map::{LINE, plot_area};
 use crate::plot::*;
 
@@ -141,6 +141,37 @@ fn stable_and_unstable_cells_are_coloured_at_their_grid_position() {
             }
         }
     }
+}
+
+#[test]
+fn a_small_energy_gain_is_shaded_between_none_and_the_largest() {
+    // Scale 1: no gain, a gain of 2.5e-5 of the allowance, the largest
+    // (ratio 9); above it every cell lost energy (ratio 0.5).
+    let ratios = [1.0, 1.0 + 2.5e-5, 9.0];
+    let cells = (0..9)
+        .map(|i| Cell {
+            stable: true,
+            max_energy_ratio: if i < 3 { ratios[i] } else { 0.5 },
+        })
+        .collect();
+    let dir = TempDir::new().expect("temporary directory");
+    let path = dir.path().join("gains.png");
+    let maps = three_by_three(cells, None);
+    write_heat_maps(&maps, &path).expect("figure written");
+    let pixmap = load(&path);
+    let at = |row, column| {
+        let (px, py) = cell_centre(&maps, row, column);
+        rgb_at(&pixmap, px, py)
+    };
+    let lightest = channels(blend(0.0));
+    assert_eq!(at(0, 0), lightest);
+    assert_eq!(at(1, 1), lightest);
+    assert_eq!(at(0, 2), channels(blend(1.0)));
+    // The log of the gain, from that of the floor to that of the largest.
+    let floor = GAIN_FLOOR.log10();
+    let t = ((2.5e-5_f64).log10() - floor) / (8.0_f64.log10() - floor);
+    assert!(t > 0.4 && t < 0.5, "{t}");
+    assert_eq!(at(0, 1), channels(blend(t as f32)));
 }
 
 #[test]
