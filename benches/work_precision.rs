@@ -3,7 +3,8 @@
 //! error at `t = 0.5 s` against a backward-Euler run converged to `10⁻⁹`
 //! with Cholesky, computed in the same run.
 //!
-//! `cargo bench --bench work_precision [-- N …]` (default N = 50 100 200):
+//! `cargo bench --bench work_precision [-- N … [LABEL …]]` (default N = 50
+//! 100 200; labels select the variants whose names contain them):
 //! the 1 m cloth of N × N particles, 1 kg, stretch / shear / bend
 //! 5000 / 500 / 50 N/m, no damping, two corners pinned, `dt = 1/60 s`,
 //! 30 steps from rest, no self-collision (fast mass-spring has none).
@@ -124,9 +125,12 @@ fn run(system: &System, integrator: &mut dyn Integrator) -> (Vec<Vec3>, f64, f64
 
 fn main() -> std::io::Result<()> {
     let mut out = std::io::stdout().lock();
-    let sizes: Vec<usize> = std::env::args()
-        .skip(1)
-        .filter_map(|a| a.parse().ok())
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let sizes: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
+    // Other arguments (but cargo's own flags) select variants by their label.
+    let filters: Vec<&String> = args
+        .iter()
+        .filter(|a| a.parse::<usize>().is_err() && !a.starts_with("--"))
         .collect();
     let sizes = if sizes.is_empty() {
         vec![50, 100, 200]
@@ -150,7 +154,10 @@ fn main() -> std::io::Result<()> {
             "| {n} | reference (Newton, Cholesky, 1e-9) | {:.1} | {iterations:.1} | — | — |",
             1e3 * seconds
         )?;
-        for (label, make) in variants() {
+        let chosen = variants()
+            .into_iter()
+            .filter(|(label, _)| filters.is_empty() || filters.iter().any(|f| label.contains(*f)));
+        for (label, make) in chosen {
             let mut integrator = make();
             let (x, seconds, iterations, rise) = run(&system, integrator.as_mut());
             let error = x

@@ -390,9 +390,10 @@ impl Assembler {
         let (springs, springs_rounding) = sum2(pattern.slots(), |t| {
             let s = &system.springs()[pattern.spring(t)];
             let (xi, xj) = (x[s.i], x[s.j]);
-            let mut e = s.energy(xi, xj);
-            let rounding =
-                s.stiffness * ((xi - xj).norm() - s.rest_length).abs() * (xi.amax() + xj.amax());
+            // ½k(l − L)² with its length computed once for the rounding too.
+            let stretch = (xi - xj).norm() - s.rest_length;
+            let mut e = 0.5 * s.stiffness * stretch * stretch;
+            let rounding = s.stiffness * stretch.abs() * (xi.amax() + xj.amax());
             if s.damping > 0.0 {
                 let rate = self.directions[t].dot(&(v[s.i] - v[s.j]));
                 e += 0.5 * beta_h * s.damping * rate * rate;

@@ -167,8 +167,12 @@ impl Integrator for FastMassSpring {
             volume.clear();
             volume.resize(x.len(), Vec3::zeros());
             system.add_volume_forces(x, volume);
+            // The three coordinates' right-hand sides, one after the other,
+            // solved in one pass over the factor.
+            let rhs = &mut prefactored.rhs;
+            let free = rhs.len() / 3;
             for c in 0..3 {
-                let rhs = &mut prefactored.rhs;
+                let rhs = &mut rhs[c * free..(c + 1) * free];
                 for (i, &u) in prefactored.unknown.iter().enumerate() {
                     if u != u32::MAX {
                         rhs[u as usize] =
@@ -191,11 +195,12 @@ impl Integrator for FastMassSpring {
                         }
                     }
                 }
-                prefactored.solve();
-                for (i, &u) in prefactored.unknown.iter().enumerate() {
-                    if u != u32::MAX {
-                        x[i][c] = prefactored.rhs[u as usize];
-                    }
+            }
+            prefactored.solve();
+            let rhs = &prefactored.rhs;
+            for (xi, &u) in x.iter_mut().zip(&prefactored.unknown) {
+                if u != u32::MAX {
+                    *xi = Vec3::from_fn(|c, _| rhs[c * free + u as usize]);
                 }
             }
         }

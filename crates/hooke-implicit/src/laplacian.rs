@@ -29,7 +29,9 @@ pub(crate) struct Laplacian {
     /// values it adds to (`usize::MAX` where an end is pinned).
     entries: Vec<[usize; 4]>,
     cholesky: ScalarCholesky,
-    /// One coordinate of a right-hand side, then of the solution.
+    /// The three coordinates of a right-hand side, then of the solution,
+    /// one after the other (coordinate `c` of free particle `u` at
+    /// `c · free + u`).
     pub(crate) rhs: Vec<f64>,
 }
 
@@ -119,7 +121,7 @@ impl Laplacian {
             diagonal,
             entries,
             cholesky,
-            rhs: vec![0.0; free],
+            rhs: vec![0.0; 3 * free],
         };
         laplacian.refactor(system, (air, weight), (key, &[]), time)?;
         Ok(laplacian)
@@ -177,29 +179,31 @@ impl Laplacian {
         Ok(())
     }
 
-    /// Solves the matrix's system for `rhs` in place.
+    /// Solves the matrix's system for the three columns of `rhs` in place,
+    /// in one pass over the factor.
     pub(crate) fn solve(&mut self) {
         self.cholesky.solve(&mut self.rhs);
     }
 
-    /// `q ← A⁻¹ q` on the free particles, coordinate by coordinate; pinned
-    /// rows become zero.
+    /// `q ← A⁻¹ q` on the free particles; pinned rows become zero.
     pub(crate) fn apply_inverse_in_place(&mut self, q: &mut [Vec3]) {
-        for c in 0..3 {
-            for (i, &u) in self.unknown.iter().enumerate() {
-                if u != u32::MAX {
-                    self.rhs[u as usize] = q[i][c];
+        let free = self.rhs.len() / 3;
+        for (qi, &u) in q.iter().zip(&self.unknown) {
+            if u != u32::MAX {
+                for (c, value) in qi.iter().enumerate() {
+                    self.rhs[c * free + u as usize] = *value;
                 }
             }
-            self.solve();
-            let (unknown, rhs) = (&self.unknown, &self.rhs);
-            for_each_row(q, |i, qi| {
-                qi[c] = if unknown[i] == u32::MAX {
-                    0.0
-                } else {
-                    rhs[unknown[i] as usize]
-                };
-            });
         }
+        self.solve();
+        let (unknown, rhs) = (&self.unknown, &self.rhs);
+        for_each_row(q, |i, qi| {
+            let u = unknown[i];
+            *qi = if u == u32::MAX {
+                Vec3::zeros()
+            } else {
+                Vec3::from_fn(|c, _| rhs[c * free + u as usize])
+            };
+        });
     }
 }

@@ -37,6 +37,10 @@ impl std::fmt::Debug for ScalarCholesky {
 }
 
 impl ScalarCholesky {
+    /// The most right-hand sides one [`ScalarCholesky::solve`] takes: the
+    /// three coordinates of a per-particle vector.
+    pub(crate) const MAX_COLUMNS: usize = 3;
+
     /// The layout and symbolic factorization for `a`'s pattern; `None` if
     /// it does not fit 32-bit indices.
     pub(crate) fn new(a: &Csr) -> Option<Self> {
@@ -64,7 +68,8 @@ impl ScalarCholesky {
         let factor_memory = MemBuffer::new(
             symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
         );
-        let solve_memory = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let solve_memory =
+            MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(Self::MAX_COLUMNS, Par::Seq));
         Some(Self {
             factor: vec![0.0; symbolic.len_val()],
             values: vec![0.0; row_idx.len()],
@@ -106,13 +111,18 @@ impl ScalarCholesky {
             .map_err(|_| ())
     }
 
-    /// Solves `A x = b` in place with the last factorization.
+    /// Solves `A X = B` in place with the last factorization for the
+    /// right-hand sides stored one after the other in `x` (at most
+    /// [`ScalarCholesky::MAX_COLUMNS`]): one pass over the factor for all
+    /// of them.
     pub(crate) fn solve(&mut self, x: &mut [f64]) {
-        let n = x.len();
+        let n = self.col_ptr.len() - 1;
+        let columns = x.len() / n.max(1);
+        debug_assert!(columns <= Self::MAX_COLUMNS && columns * n == x.len());
         let llt = faer::sparse::linalg::cholesky::LltRef::new(&self.symbolic, &self.factor);
         llt.solve_in_place_with_conj(
             Conj::No,
-            MatMut::from_column_major_slice_mut(x, n, 1),
+            MatMut::from_column_major_slice_mut(x, n, columns),
             Par::Seq,
             MemStack::new(&mut self.solve_memory),
         );
