@@ -7,9 +7,9 @@ use hooke_core::{CompressedSprings, State, StepError, StepReport, System, Vec3};
 
 use crate::assembly::Linearization;
 use crate::contact::Contact;
-use crate::energy::{energy, pin_work, rounding};
+use crate::energy::{absorption, energy, pin_work, rounding};
 use crate::implicit::{Implicit, Scheme, Work};
-use crate::newton::{self, Iterates, Newton};
+use crate::newton::{self, Iterates, Newton, velocity_scale};
 use crate::solver::{Solve, topology};
 use crate::vector::for_each_row;
 
@@ -247,8 +247,20 @@ impl Implicit {
         }
         let excess = after - before - work - rounding(magnitude_before.max(magnitude_after));
         // Converged backward-Euler steps are held to the energy test; BDF2's
-        // two-step steps and the linearised step only report a gain.
+        // two-step steps and the linearised step only report a gain. A gain
+        // that the kinetic energy absorbs by moving the velocities less
+        // than the stopping rule's tolerance passes (the `energy` module).
         let tested = !self.linearized && !two_step;
+        let (factor, within_tolerance) = if excess > 0.0 {
+            let (factor, shift) = absorption(system, v, excess);
+            let scale = velocity_scale(system, v.iter().copied(), v0, beta_h);
+            (
+                factor,
+                outcome.converged && shift <= self.newton_tolerance * scale,
+            )
+        } else {
+            (1.0, false)
+        };
         report.newton_iterations += outcome.iterations;
         report.newton_iterations_max = report.newton_iterations_max.max(outcome.iterations);
         let error = self.error_control.and_then(|control| {
@@ -263,7 +275,7 @@ impl Implicit {
         let too_large = error.is_some_and(|(err, _)| err > 1.0);
         if !self.linearized
             && !at_floor
-            && (!outcome.converged || (tested && excess > 0.0) || too_large)
+            && (!outcome.converged || (tested && excess > 0.0 && !within_tolerance) || too_large)
         {
             self.history = saved_history;
             return Ok(Outcome::Rejected { error });
@@ -282,8 +294,17 @@ impl Implicit {
         if excess > 0.0 {
             report.energy_excess = report.energy_excess.max(excess);
             if tested {
-                absorb(system, v, excess);
-                report.energy_corrections += 1;
+                // The kinetic energy absorbs the gain: within the Newton
+                // tolerance, or at the floor as the last resort (all of
+                // the kinetic energy, if the gain is as large).
+                for_each_row(v, |i, v| {
+                    if !system.is_pinned(i) {
+                        *v *= factor;
+                    }
+                });
+                if !within_tolerance {
+                    report.energy_corrections += 1;
+                }
             }
         }
         let touching = contact.map_or(0, |contact| contact.end_step(system, x));
@@ -306,26 +327,5 @@ impl Implicit {
             easy: 3 * outcome.iterations <= self.newton_iterations,
             error,
         })
-    }
-}
-
-/// The last resort for a step that gained `excess` J at the substep floor:
-/// the free particles' kinetic energy absorbs it (all of it, if it is
-/// large enough), their velocities scaled by one factor.
-fn absorb(system: &System, v: &mut [Vec3], excess: f64) {
-    let masses = system.masses();
-    let kinetic: f64 = (0..v.len())
-        .filter(|&i| !system.is_pinned(i))
-        .map(|i| 0.5 * masses[i] * v[i].norm_squared())
-        .sum();
-    let factor = if kinetic > 0.0 {
-        ((kinetic - excess).max(0.0) / kinetic).sqrt()
-    } else {
-        1.0
-    };
-    for (i, v) in v.iter_mut().enumerate() {
-        if !system.is_pinned(i) {
-            *v *= factor;
-        }
     }
 }
