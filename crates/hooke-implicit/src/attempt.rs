@@ -133,21 +133,13 @@ impl Implicit {
             &mut self.contact
         });
         let has_contact = contact.is_some();
-        // Baraff & Witkin's linearised step: the whole step when
-        // linearised (without contact), otherwise the first candidate for
-        // Newton's starting point. Its assembly also freezes the dampers'
-        // directions at the step's start.
-        let lin = Linearization {
-            positions: x0,
-            velocities: v0,
-            displacement: Some(u),
-            inertia,
-            beta_h,
-            compressed,
-            freeze_directions: true,
-        };
-        solve.assemble(&mut self.assembler, topology, &lin, b)?;
+        // Without contact, Baraff & Witkin's linearised step: the whole step
+        // when linearised, otherwise the first candidate for Newton's
+        // starting point; its assembly also freezes the dampers' directions
+        // at the step's start. With contact, only the directions are frozen.
         let lin_steps = if let Some(contact) = contact.as_deref_mut() {
+            self.assembler
+                .freeze_directions(system, topology.pattern(), x0);
             // Newton starts from the feasible positions of the step's start
             // or, if lower in Φ, from the inertial predictor vₙ + z as far
             // towards it as no pair comes closer than a tenth of its gap.
@@ -166,6 +158,16 @@ impl Implicit {
             for_each_row(trial, |i, t| *t = v[i] + tau * *t);
             1
         } else {
+            let lin = Linearization {
+                positions: x0,
+                velocities: v0,
+                displacement: Some(u),
+                inertia,
+                beta_h,
+                compressed,
+                freeze_directions: true,
+            };
+            solve.assemble(&mut self.assembler, topology, &lin, b)?;
             if pinned {
                 self.pins.prescribe(topology.matrix(), b);
             }

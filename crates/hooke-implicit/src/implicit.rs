@@ -50,10 +50,10 @@ pub enum Scheme {
 /// friction's dissipation potential. Newton's method starts at whichever of
 /// `vₙ` and Baraff & Witkin's linearised solution (both with the velocity
 /// changes of pins and contacts applied) has the lower `Φ`, and solves
-/// `(M + βh C + β²h² K) δ = −g` with the exact spring Hessian where that
-/// system is positive definite and compressed springs clamped (each
-/// spring's Hessian projected onto its positive part) where it is not, so
-/// that every step descends. Every iterate, the first one included, is
+/// `(M + βh C + β²h² K) δ = −g` with the exact spring and volume-element
+/// Hessians where that system is positive definite, and with compressed
+/// springs clamped and the elements' Hessians projected (each onto its
+/// positive part) where it is not, so that every step descends. Every iterate, the first one included, is
 /// accepted only through a line search that decreases `Φ` (Armijo,
 /// extended with a watchdog step and extrapolation; see the
 /// `newton` module). It stops when the Newton decrement `λ = √(δᵀAδ)`,

@@ -138,12 +138,13 @@ impl Newton<'_> {
     }
 
     /// Newton's step `δ` at `v`: assembles `(M + βh C + β²h² K) δ = −∇Φ(v)`
-    /// with the exact stiffness blocks (unless an earlier iteration of the
-    /// same step needed the clamp, [`Newton::hessian`]), or — where that
-    /// system is not
+    /// with the exact stiffness blocks of springs and volume elements
+    /// (unless an earlier iteration of the same step needed the clamp,
+    /// [`Newton::hessian`]), or — where that system is not
     /// positive definite or its solution does not descend, and the
     /// integrator clamps compressed springs — with compressed springs
-    /// clamped, adds the contact terms' gradients and projected Hessians,
+    /// clamped and the elements' Hessians projected, adds the contact
+    /// terms' gradients and projected Hessians,
     /// and solves it in the free directions. Returns the slope `∇Φ·δ`.
     ///
     /// # Errors
