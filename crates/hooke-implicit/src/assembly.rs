@@ -530,15 +530,15 @@ impl Assembler {
 /// The volume elements' energy `Σ ½ κ V₀ (J − 1)²` at positions `x`, and the
 /// sum of the energies plus the energy the rounding of the vertices'
 /// coordinates puts into them, `κ V₀ |J − 1| |∇J| max|x|` per element
-/// (divided by ε).
+/// (divided by ε), with `|∇J| ≈ V₀^(−1/3)`.
 pub(crate) fn volume_energy(system: &System, x: &[Vec3]) -> (f64, f64) {
     let (mut energy, mut rounding) = (0.0, 0.0);
     for t in system.tets().iter().filter(|t| t.modulus > 0.0) {
-        let e = t.energy(x);
-        let slope = (2.0 * e * t.modulus * t.rest_volume).sqrt();
+        let (stiffness, change) = (t.modulus * t.rest_volume, t.volume_ratio(x) - 1.0);
+        let e = 0.5 * stiffness * change * change;
         let reach = t.vertices.iter().map(|&i| x[i].amax()).fold(0.0, f64::max);
         energy += e;
-        rounding += e + slope * t.gradient_scale() * reach;
+        rounding += e + stiffness * change.abs() * t.gradient_scale() * reach;
     }
     (energy, rounding)
 }
