@@ -1,15 +1,18 @@
 //! Above `PARALLEL_MIN_PARTICLES` the assembly and the matrix-vector product
-//! run in parallel; they agree with sequential computations done here from
-//! the spring formulas and with faer's scalar sparse product.
+//! run in parallel, and above `PARALLEL_MIN_ELEMENTS` the volume elements'
+//! blocks; they agree with sequential computations done here from the
+//! spring and element formulas and with faer's scalar sparse product.
 #![cfg(feature = "parallel")]
 
 use faer::sparse::linalg::matmul::sparse_dense_matmul;
 use faer::{Accum, MatMut, MatRef, Par};
-use hooke::core::CompressedSprings;
+use hooke::core::{CompressedSprings, TetHessian};
 use hooke::implicit::{
-    Assembler, BlockJacobi, BlockMatrix, Linearization, PARALLEL_MIN_PARTICLES, Pattern,
+    Assembler, BlockJacobi, BlockMatrix, Linearization, PARALLEL_MIN_ELEMENTS,
+    PARALLEL_MIN_PARTICLES, Pattern,
 };
 use hooke::prelude::*;
+use hooke::scenes::{Lattice, TetSplit, Volume};
 
 #[test]
 fn parallel_assembly_and_product_match_sequential_computations() {
@@ -106,6 +109,88 @@ fn parallel_assembly_and_product_match_sequential_computations() {
             (y[i] - e).norm() <= 1e-10 * (1.0 + e.norm()),
             "product row {i}: {:?} vs {e:?}",
             y[i]
+        );
+    }
+}
+
+/// A tet lattice with more than [`PARALLEL_MIN_ELEMENTS`] elements, its
+/// vertices moved (some elements compressed, some stretched): the assembled
+/// step at a Newton iterate holds `h²` times each element's projected
+/// Hessian and `−h` times its gradient, summed here element by element.
+#[test]
+fn parallel_element_blocks_match_sequential_sums() {
+    // The lattice with its elements, and without them for the springs'
+    // share of the product.
+    let [system, springs_only] = [Volume::Auto, Volume::Off].map(|volume| {
+        let lattice = Lattice::tets(6, 6, 6, TetSplit::Six)
+            .size([0.3, 0.3, 0.3])
+            .edges(1e3)
+            .volume(volume)
+            .build()
+            .unwrap();
+        let mut builder = SystemBuilder::new();
+        lattice.add_to(&mut builder);
+        builder.build().unwrap()
+    });
+    assert!(system.tets().len() >= PARALLEL_MIN_ELEMENTS);
+    let n = system.particle_count();
+    let x: Vec<Vec3> = system
+        .initial_positions()
+        .iter()
+        .enumerate()
+        .map(|(k, p)| p + 0.01 * Vec3::new((k as f64).sin(), (1.7 * k as f64).cos(), 0.0))
+        .collect();
+    let v = vec![Vec3::zeros(); n];
+    let h = 0.01;
+    let lin = Linearization {
+        positions: &x,
+        velocities: &v,
+        displacement: None,
+        inertia: &v,
+        beta_h: h,
+        compressed: CompressedSprings::Clamped,
+        freeze_directions: true,
+    };
+    let [a, a_springs] = [&system, &springs_only].map(|system| {
+        let mut a = BlockMatrix::zeros(Pattern::new(system).unwrap());
+        let (mut jacobi, mut b) = (BlockJacobi::default(), vec![Vec3::zeros(); n]);
+        Assembler::default()
+            .assemble(system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+            .unwrap();
+        (a, b)
+    });
+    let ((a, b), (springs_only, _)) = (a, a_springs);
+    let w: Vec<Vec3> = (0..n)
+        .map(|k| Vec3::new(1.0, (k as f64).cos(), 0.1 * k as f64))
+        .collect();
+    let (mut with, mut without) = (vec![Vec3::zeros(); n], vec![Vec3::zeros(); n]);
+    a.apply(&w, &mut with);
+    springs_only.apply(&w, &mut without);
+    let (mut product, mut rhs) = (vec![Vec3::zeros(); n], vec![Vec3::zeros(); n]);
+    for s in system.springs() {
+        let share = h * s.elastic_force(x[s.i], x[s.j]);
+        rhs[s.i] += share;
+        rhs[s.j] -= share;
+    }
+    for t in system.tets() {
+        let d = t.derivatives(&x, TetHessian::Projected);
+        for (p, &i) in t.vertices.iter().enumerate() {
+            rhs[i] -= h * d.gradient[p];
+            for (q, &j) in t.vertices.iter().enumerate() {
+                product[i] += h * h * d.hessian.fixed_view::<3, 3>(3 * p, 3 * q) * w[j];
+            }
+        }
+    }
+    for i in 0..n {
+        let error = (with[i] - without[i] - product[i]).norm();
+        assert!(
+            error <= 1e-10 * (1.0 + product[i].norm()),
+            "product row {i} off by {error}"
+        );
+        let error = (b[i] - rhs[i]).norm();
+        assert!(
+            error <= 1e-10 * (1.0 + rhs[i].norm()),
+            "rhs {i} off by {error}"
         );
     }
 }

@@ -40,7 +40,9 @@ pub struct StepReport {
     pub energy_corrections: usize,
     /// Largest energy, in J, that one step gained beyond the work of external
     /// forces: removed by the last resort where [`Self::energy_corrections`]
-    /// counts it, otherwise left in the state.
+    /// counts it, removed within the Newton tolerance by an energy-checked
+    /// method's test (see `hooke_implicit::Implicit`), otherwise left in the
+    /// state.
     pub energy_excess: f64,
     /// Largest final Newton residual of a step: the last Newton step
     /// `‖δ‖∞` relative to the step's velocity scale (see

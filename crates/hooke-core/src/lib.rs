@@ -86,7 +86,7 @@ pub use spring::{CompressedSprings, Linearized, Spring};
 pub use state::{History, State};
 pub use step::{Start, StepBuffers};
 pub use system::{Inversion, System};
-pub use volume::{Mat12, Tet, TetDerivatives};
+pub use volume::{Mat12, TET_PAIRS, Tet, TetBlocks, TetDerivatives, TetHessian};
 
 /// A 3-vector of `f64`: positions, velocities, forces.
 pub type Vec3 = nalgebra::Vector3<f64>;

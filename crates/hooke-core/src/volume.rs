@@ -34,7 +34,11 @@ pub type Mat12 = SMatrix<f64, 12, 12>;
 /// size of the volume.
 ///
 /// **Hessian.** `∇²E = κ V₀ (∇J ∇Jᵀ + (J − 1) ∇²J)` is indefinite away
-/// from rest. In terms of `F = U Σ Vᵀ` (`U`, `V` rotations, `σ₂` negative
+/// from rest. `J` is linear in each vertex, so `∇²J` has zero diagonal
+/// blocks and between vertices `a ≠ b` the block `[x_s − x_r]× / 6V₀`
+/// (the cross-product matrix, `(a, b, r, s)` an odd permutation of
+/// `(0, 1, 2, 3)`): the exact Hessian costs sixteen outer products. In
+/// terms of `F = U Σ Vᵀ` (`U`, `V` rotations, `σ₂` negative
 /// for an inverted element) it has closed-form eigenpairs (Smith, de Goes
 /// & Kim, *Analytic eigensystems for isotropic distortion energies*, 2019):
 /// with `E' = κ V₀ (J − 1)`,
@@ -46,9 +50,11 @@ pub type Mat12 = SMatrix<f64, 12, 12>;
 ///   matrix `κ V₀ g gᵀ + E' A`, `g = (σ₁σ₂, σ₀σ₂, σ₀σ₁)`,
 ///   `A = [[0, σ₂, σ₁], [σ₂, 0, σ₀], [σ₁, σ₀, 0]]`.
 ///
-/// [`Tet::derivatives`] clamps the negative eigenvalues to zero: the projected
-/// Hessian is positive semidefinite, equal to the exact one where that is,
-/// and costs one 3 × 3 SVD and one 3 × 3 symmetric eigensolve per element.
+/// [`Tet::derivatives`] returns the exact Hessian, the projected one with
+/// these negative eigenvalues clamped to zero — positive semidefinite, equal
+/// to the exact one where that is, at the cost of one 3 × 3 SVD and one
+/// 3 × 3 symmetric eigensolve — or the Gauss–Newton part `κ V₀ ∇J ∇Jᵀ`
+/// ([`TetHessian`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tet {
     /// The four particles, ordered so that the rest volume is positive.
@@ -59,6 +65,45 @@ pub struct Tet {
     pub rest_volume: f64,
     /// `Dₘ⁻¹`, the inverse of the rest edge matrix.
     rest_inverse: Mat3,
+    /// `V₀^(−1/3)`.
+    gradient_scale: f64,
+}
+
+/// Which Hessian [`Tet::derivatives`] returns.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TetHessian {
+    /// `κ V₀ (∇J ∇Jᵀ + (J − 1) ∇²J)`, indefinite away from rest; sixteen
+    /// outer products.
+    Exact,
+    /// The Gauss–Newton part `κ V₀ ∇J ∇Jᵀ` of the energy `½ κ V₀ r²` of the
+    /// residual `r = J − 1` (Nocedal & Wright, *Numerical Optimization*,
+    /// §10.3): positive semidefinite, exact at rest, off by `κ V₀ |J − 1|
+    /// ‖∇²J‖` elsewhere; as cheap as the exact one.
+    GaussNewton,
+    /// The exact Hessian with its negative eigenvalues (in the basis of the
+    /// modes, [`Tet`]'s docs) clamped to zero: positive semidefinite, equal
+    /// to the exact one where that is, the closest such matrix; about ten
+    /// times the cost (an SVD and a 3 × 3 eigensolve).
+    Projected,
+}
+
+/// The pairs `(a, b)` of an element's vertices, in the order of
+/// [`TetBlocks::pairs`].
+pub const TET_PAIRS: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+
+/// The energy, gradient and Hessian of one element at a configuration, the
+/// Hessian in 3 × 3 blocks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TetBlocks {
+    /// `E`, J.
+    pub energy: f64,
+    /// `∂E/∂xₐ` for the four vertices, N (minus the forces on them).
+    pub gradient: [Vec3; 4],
+    /// `∂²E/∂xₐ²` for the four vertices.
+    pub diagonal: [Mat3; 4],
+    /// `∂²E/∂xₐ∂x_b` for the pairs [`TET_PAIRS`]; the block at `(b, a)` is
+    /// its transpose.
+    pub pairs: [Mat3; 6],
 }
 
 /// The energy, gradient and Hessian of one element at a configuration.
@@ -68,7 +113,8 @@ pub struct TetDerivatives {
     pub energy: f64,
     /// `∂E/∂xₐ` for the four vertices, N (minus the forces on them).
     pub gradient: [Vec3; 4],
-    /// `∇²E`, exact or projected onto its positive part.
+    /// `∇²E`, exact or one of its positive-semidefinite stand-ins
+    /// ([`TetHessian`]).
     pub hessian: Mat12,
 }
 
@@ -101,7 +147,15 @@ impl Tet {
             modulus,
             rest_volume: volume,
             rest_inverse: rest.try_inverse()?,
+            gradient_scale: volume.cbrt().recip(),
         })
+    }
+
+    /// `V₀^(−1/3)`, 1/m: the scale of `|∂J/∂xₐ|` near rest, one over the
+    /// element's size.
+    #[must_use]
+    pub fn gradient_scale(&self) -> f64 {
+        self.gradient_scale
     }
 
     /// The four vertices' positions in `x`.
@@ -154,17 +208,86 @@ impl Tet {
         [-(g1 + g2 + g3), g1, g2, g3]
     }
 
-    /// The energy, gradient and Hessian at positions `x`; with `project`,
-    /// the Hessian's negative eigenvalues (in the basis of the module docs)
-    /// are clamped to zero, so it is positive semidefinite.
+    /// The energy, gradient and Hessian of the kind `hessian` at positions
+    /// `x`.
     #[must_use]
-    pub fn derivatives(&self, x: &[Vec3], project: bool) -> TetDerivatives {
-        let f = self.deformation(x);
-        let j = f.determinant();
+    pub fn derivatives(&self, x: &[Vec3], hessian: TetHessian) -> TetDerivatives {
+        if hessian == TetHessian::Projected {
+            let (j, dj, f) = self.volume_derivatives(x);
+            let stiffness = self.modulus * self.rest_volume;
+            let slope = stiffness * (j - 1.0);
+            return TetDerivatives {
+                energy: 0.5 * slope * (j - 1.0),
+                gradient: dj.map(|g| slope * g),
+                hessian: self.projected_hessian(&f, stiffness, slope),
+            };
+        }
+        let b = self.blocks(x, hessian);
+        let mut full = Mat12::zeros();
+        for (a, block) in b.diagonal.iter().enumerate() {
+            full.fixed_view_mut::<3, 3>(3 * a, 3 * a).copy_from(block);
+        }
+        for (&(a, c), block) in TET_PAIRS.iter().zip(&b.pairs) {
+            full.fixed_view_mut::<3, 3>(3 * a, 3 * c).copy_from(block);
+            full.fixed_view_mut::<3, 3>(3 * c, 3 * a)
+                .copy_from(&block.transpose());
+        }
+        TetDerivatives {
+            energy: b.energy,
+            gradient: b.gradient,
+            hessian: full,
+        }
+    }
+
+    /// [`Tet::derivatives`] with the Hessian in blocks: for the exact and
+    /// the Gauss–Newton Hessian, the blocks `κ V₀ ∇ₐJ ∇_bJᵀ + E' ∂²J/∂xₐ∂x_b`
+    /// (`E' = κ V₀ (J − 1)`, or 0 for Gauss–Newton) are formed directly,
+    /// without the 12 × 12 matrix.
+    #[must_use]
+    pub fn blocks(&self, x: &[Vec3], hessian: TetHessian) -> TetBlocks {
+        let (j, dj, f) = self.volume_derivatives(x);
         let stiffness = self.modulus * self.rest_volume;
         let slope = stiffness * (j - 1.0);
-        let gradient = self.spread(&(slope * cofactor(&f)));
-        let (u, sigma, v) = signed_svd(&f);
+        let (energy, gradient) = (0.5 * slope * (j - 1.0), dj.map(|g| slope * g));
+        if hessian == TetHessian::Projected {
+            let full = self.projected_hessian(&f, stiffness, slope);
+            let block = |a: usize, b: usize| full.fixed_view::<3, 3>(3 * a, 3 * b).into_owned();
+            return TetBlocks {
+                energy,
+                gradient,
+                diagonal: std::array::from_fn(|a| block(a, a)),
+                pairs: TET_PAIRS.map(|(a, b)| block(a, b)),
+            };
+        }
+        let curvature = if hessian == TetHessian::Exact {
+            slope / (6.0 * self.rest_volume)
+        } else {
+            0.0
+        };
+        let p = self.corners(x);
+        let mut pairs = [Mat3::zeros(); 6];
+        for (pair, (a, b, r, s)) in pairs.iter_mut().zip(ODD_PERMUTATION_PAIRS) {
+            *pair =
+                stiffness * dj[a] * dj[b].transpose() + curvature * (p[s] - p[r]).cross_matrix();
+        }
+        TetBlocks {
+            energy,
+            gradient,
+            diagonal: dj.map(|g| stiffness * g * g.transpose()),
+            pairs,
+        }
+    }
+
+    /// `J`, `∇J` and `F` at `x`.
+    fn volume_derivatives(&self, x: &[Vec3]) -> (f64, [Vec3; 4], Mat3) {
+        let f = self.deformation(x);
+        (f.determinant(), self.spread(&cofactor(&f)), f)
+    }
+
+    /// The Hessian from the eigenpairs of [`Tet`]'s docs, negative
+    /// eigenvalues clamped to zero.
+    fn projected_hessian(&self, f: &Mat3, stiffness: f64, slope: f64) -> Mat12 {
+        let (u, sigma, v) = signed_svd(f);
         let [s0, s1, s2] = [sigma[0], sigma[1], sigma[2]];
         let mut hessian = Mat12::zeros();
         // Each mode as the matrix `Q = U D Vᵀ`, from the columns of U and V.
@@ -173,7 +296,7 @@ impl Tet {
             [v.column(0), v.column(1), v.column(2)],
         );
         let mut add_mode = |lambda: f64, q: Mat3| {
-            if project && lambda <= 0.0 {
+            if lambda <= 0.0 {
                 return;
             }
             let w = self.spread(&q);
@@ -194,13 +317,23 @@ impl Tet {
             let q = (0..3).fold(Mat3::zeros(), |q, i| q + w[i] * uc[i] * vc[i].transpose());
             add_mode(values[k], q);
         }
-        TetDerivatives {
-            energy: 0.5 * stiffness * (j - 1.0) * (j - 1.0),
-            gradient,
-            hessian,
-        }
+        hessian
     }
 }
+
+/// The vertex pairs `(a, b)` of [`TET_PAIRS`] with the other two vertices
+/// `(r, s)` such that `(a, b, r, s)` is an odd permutation of `(0, 1, 2, 3)`:
+/// `∂²(6V)/∂xₐ∂x_b = [x_s − x_r]×`, the cross-product matrix (`[w]× y =
+/// w × y`), and `∂²(6V)/∂x_b∂xₐ` its transpose `−[x_s − x_r]×`; the
+/// diagonal blocks are zero, as `V` is linear in each vertex.
+const ODD_PERMUTATION_PAIRS: [(usize, usize, usize, usize); 6] = [
+    (0, 1, 3, 2),
+    (0, 2, 1, 3),
+    (0, 3, 2, 1),
+    (1, 2, 3, 0),
+    (1, 3, 0, 2),
+    (2, 3, 1, 0),
+];
 
 /// The edge matrix `[p₁ − p₀, p₂ − p₀, p₃ − p₀]`.
 fn edges(p: &[Vec3; 4]) -> Mat3 {
@@ -404,7 +537,7 @@ mod tests {
     fn gradient_and_hessian_match_finite_differences() {
         let (t, _) = tet();
         for (name, x) in configurations() {
-            let d = t.derivatives(&x, false);
+            let d = t.derivatives(&x, TetHessian::Exact);
             assert!((d.energy - t.energy(&x)).abs() <= 1e-12 * d.energy.max(1.0));
             let forces = t.forces(&x);
             let h = 1e-6;
@@ -419,8 +552,8 @@ mod tests {
                 );
                 assert!((forces[k / 3][k % 3] + analytic).abs() <= 1e-12 * scale);
                 let (gp, gm) = (
-                    flat(&t.derivatives(&plus, false).gradient),
-                    flat(&t.derivatives(&minus, false).gradient),
+                    flat(&t.derivatives(&plus, TetHessian::Exact).gradient),
+                    flat(&t.derivatives(&minus, TetHessian::Exact).gradient),
                 );
                 for l in 0..12 {
                     let numeric = (gp[l] - gm[l]) / (2.0 * h);
@@ -436,15 +569,17 @@ mod tests {
 
     /// The projected Hessian is positive semidefinite on random
     /// deformations, inverted ones included, and equals the exact one at
-    /// rest (where the exact one is).
+    /// rest (where the exact one is); the Gauss–Newton Hessian has the one
+    /// eigenvalue `κ V₀ |∇J|²` and zeros, and equals the exact one at rest
+    /// too.
     #[test]
-    fn projected_hessian_is_positive_semidefinite() {
+    fn projected_and_gauss_newton_hessians_are_positive_semidefinite() {
         let (t, rest) = tet();
         let mut rng = crate::collision::distance::tests::Rng::new(7);
         for _ in 0..200 {
             let x = rest.map(|p| p + Vec3::from_fn(|_, _| rng.uniform(-0.6, 0.6)));
-            let h = t.derivatives(&x, true).hessian;
-            let exact = t.derivatives(&x, false).hessian;
+            let h = t.derivatives(&x, TetHessian::Projected).hessian;
+            let exact = t.derivatives(&x, TetHessian::Exact).hessian;
             let eigen = nalgebra::SymmetricEigen::new(h).eigenvalues;
             let scale = exact.amax();
             assert!(
@@ -457,9 +592,20 @@ mod tests {
             // semidefinite.
             let removed = nalgebra::SymmetricEigen::new(exact - h).eigenvalues;
             assert!(removed.max() <= 1e-10 * scale);
+            let gauss_newton = t.derivatives(&x, TetHessian::GaussNewton).hessian;
+            let mut eigen = nalgebra::SymmetricEigen::new(gauss_newton).eigenvalues;
+            eigen.as_mut_slice().sort_by(f64::total_cmp);
+            let dj = t.volume_gradient(&x);
+            let expected =
+                t.modulus * t.rest_volume * dj.iter().map(Vec3::norm_squared).sum::<f64>();
+            assert!((eigen[11] - expected).abs() <= 1e-10 * expected);
+            assert!(eigen.rows(0, 11).amax() <= 1e-10 * expected);
         }
-        let at_rest = t.derivatives(&rest, true).hessian;
-        assert!((at_rest - t.derivatives(&rest, false).hessian).amax() <= 1e-12 * at_rest.amax());
+        let exact = t.derivatives(&rest, TetHessian::Exact).hessian;
+        for kind in [TetHessian::Projected, TetHessian::GaussNewton] {
+            let at_rest = t.derivatives(&rest, kind).hessian;
+            assert!((at_rest - exact).amax() <= 1e-12 * exact.amax(), "{kind:?}");
+        }
     }
 
     /// An inverted element's force raises its volume, a compressed one's

@@ -34,7 +34,7 @@
 use std::ops::Range;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use hooke_core::{CompressedSprings, StepError, System, Vec3};
+use hooke_core::{CompressedSprings, Mat3, StepError, System, TET_PAIRS, Tet, TetHessian, Vec3};
 
 use crate::block::SymBlock;
 use crate::cg::BlockJacobi;
@@ -65,7 +65,10 @@ pub struct Linearization<'a> {
     pub inertia: &'a [Vec3],
     /// `βh`.
     pub beta_h: f64,
-    /// How compressed springs' stiffness blocks are treated.
+    /// How compressed springs' stiffness blocks are treated, and with them
+    /// the volume elements' Hessians: exact with
+    /// [`CompressedSprings::Exact`], positive semidefinite stand-ins with
+    /// [`CompressedSprings::Clamped`] ([`Assembler`]'s `volume_terms`).
     pub compressed: CompressedSprings,
     /// Whether to take the damping directions from `positions` (the first
     /// linearisation of a step) or keep those of the previous call.
@@ -110,10 +113,43 @@ pub struct Assembler {
     pub(crate) touched: Vec<Range<usize>>,
     /// Per slot: the spring's damping direction, frozen at the step's start.
     pub(crate) directions: Vec<Vec3>,
-    /// Per particle: the volume elements' sums into its diagonal block and
-    /// right-hand side.
+    /// Per element: its blocks and right-hand-side shares.
+    element_terms: Vec<ElementTerms>,
+    /// Per element of the system identified by the first entry: the
+    /// pattern's slot between each pair of its vertices, if a spring joins
+    /// them.
+    element_slots: (u64, Vec<[Option<usize>; 6]>),
+    /// Per particle: the volume elements' diagonal blocks, those plus the
+    /// bounds of their blocks outside the pattern, and their right-hand-side
+    /// shares.
+    volume_rows: Vec<SymBlock>,
     volume_diagonals: Vec<SymBlock>,
     pub(crate) volume_rhs: Vec<Vec3>,
+}
+
+/// Element count from which the elements' blocks are evaluated in parallel
+/// (with the `parallel` feature): an element's projected Hessian takes
+/// about a microsecond, its exact one a tenth of that, against the tens
+/// of microseconds of waking the workers.
+pub const PARALLEL_MIN_ELEMENTS: usize = 1024;
+
+/// The index in [`TET_PAIRS`] of the pair `(p, q)`, `p < q`.
+fn pair_index(p: usize, q: usize) -> usize {
+    match (p, q) {
+        (0, q) => q - 1,
+        (1, q) => q + 1,
+        _ => 5,
+    }
+}
+
+/// One element's share of a linearised step: `β²h²` times its Hessian's
+/// diagonal blocks (symmetrised) and blocks between its vertices, and its
+/// right-hand-side shares `−βh (∇E + H u)` at its four vertices.
+#[derive(Debug, Clone, Copy, Default)]
+struct ElementTerms {
+    diagonal: [SymBlock; 4],
+    pairs: [Mat3; 6],
+    rhs: [Vec3; 4],
 }
 
 impl Assembler {
@@ -303,49 +339,143 @@ impl Assembler {
         chunk
     }
 
+    /// Freezes the dampers' directions `d = (xᵢ − xⱼ)/|xᵢ − xⱼ|` at the
+    /// positions `x`, as a linearisation with `freeze_directions` does,
+    /// without assembling.
+    pub(crate) fn freeze_directions(&mut self, system: &System, pattern: &Pattern, x: &[Vec3]) {
+        let springs = system.springs();
+        self.directions.resize(springs.len(), Vec3::zeros());
+        for_each_row(&mut self.directions, |t, d| {
+            let s = &springs[pattern.spring(t)];
+            if s.damping > 0.0 {
+                *d = s
+                    .linearize(x[s.i], x[s.j], CompressedSprings::Clamped)
+                    .direction;
+            }
+        });
+    }
+
     /// Adds the volume elements' blocks between their vertices to `a` and
     /// gathers their diagonal blocks and right-hand-side shares per
     /// particle; returns whether the system has elements with a modulus.
+    ///
+    /// Each element's Hessian ([`TetHessian`]) is the exact one with
+    /// [`CompressedSprings::Exact`]; with [`CompressedSprings::Clamped`] the
+    /// projected one at a Newton iterate, and the Gauss–Newton one for
+    /// Baraff & Witkin's step (a `displacement`): that step is a starting
+    /// point for Newton's method, which corrects it, or the whole step of
+    /// the linearised integrator, and the Gauss–Newton Hessian, exact at
+    /// rest, costs a tenth of the projection. The elements' blocks are
+    /// evaluated independently — in parallel from [`PARALLEL_MIN_ELEMENTS`]
+    /// elements on — and then added to the matrix in element order, so both
+    /// paths give the same sums.
     fn volume_terms(
         &mut self,
         system: &System,
         lin: &Linearization<'_>,
         a: &mut BlockMatrix,
     ) -> bool {
-        let mut tets = system.tets().iter().filter(|t| t.modulus > 0.0).peekable();
-        if tets.peek().is_none() {
+        let tets = system.tets();
+        if tets.iter().all(|t| t.modulus <= 0.0) {
             return false;
         }
         let n = system.particle_count();
         let (bh, bh2) = (lin.beta_h, lin.beta_h * lin.beta_h);
-        self.volume_diagonals.clear();
-        self.volume_diagonals.resize(n, SymBlock::default());
-        self.volume_rhs.clear();
-        self.volume_rhs.resize(n, Vec3::zeros());
-        for t in tets {
-            let d = t.derivatives(lin.positions, true);
-            let block =
-                |p: usize, q: usize| d.hessian.fixed_view::<3, 3>(3 * p, 3 * q).into_owned();
-            for (p, &i) in t.vertices.iter().enumerate() {
+        let kind = match (lin.compressed, lin.displacement) {
+            (CompressedSprings::Exact, _) => TetHessian::Exact,
+            (CompressedSprings::Clamped, None) => TetHessian::Projected,
+            (CompressedSprings::Clamped, Some(_)) => TetHessian::GaussNewton,
+        };
+        let evaluate = |t: &Tet, terms: &mut ElementTerms| {
+            if t.modulus <= 0.0 {
+                return;
+            }
+            let d = t.blocks(lin.positions, kind);
+            let block = |p: usize, q: usize| match p.cmp(&q) {
+                std::cmp::Ordering::Equal => d.diagonal[p],
+                std::cmp::Ordering::Less => d.pairs[pair_index(p, q)],
+                std::cmp::Ordering::Greater => d.pairs[pair_index(q, p)].transpose(),
+            };
+            for p in 0..4 {
                 let mut share = -d.gradient[p];
                 if let Some(u) = lin.displacement {
                     for (q, &j) in t.vertices.iter().enumerate() {
                         share -= block(p, q) * u[j];
                     }
                 }
-                self.volume_rhs[i] += bh * share;
-                let diagonal = SymBlock::symmetric_part(&(bh2 * block(p, p)));
-                self.volume_diagonals[i].add_assign(&diagonal);
-                a.extra_rows.push((i as u32, diagonal));
-                for (q, &j) in t.vertices.iter().enumerate().skip(p + 1) {
-                    let pair = bh2 * block(p, q);
-                    if a.pattern.slot_between(i, j).is_none() {
-                        let bound = SymBlock::scaled_identity(pair.norm());
-                        self.volume_diagonals[i].add_assign(&bound);
-                        self.volume_diagonals[j].add_assign(&bound);
-                    }
-                    a.add_extra_pair(i, j, pair);
+                terms.rhs[p] = bh * share;
+                terms.diagonal[p] = SymBlock::symmetric_part(&(bh2 * d.diagonal[p]));
+            }
+            for (pair, block) in terms.pairs.iter_mut().zip(&d.pairs) {
+                *pair = bh2 * block;
+            }
+        };
+        self.element_terms
+            .resize(tets.len(), ElementTerms::default());
+        let terms = &mut self.element_terms;
+        if cfg!(feature = "parallel") && tets.len() >= PARALLEL_MIN_ELEMENTS {
+            #[cfg(feature = "parallel")]
+            {
+                use rayon::prelude::*;
+                terms
+                    .par_iter_mut()
+                    .zip(tets.par_iter())
+                    .with_min_len(PARALLEL_MIN_ELEMENTS / 4)
+                    .for_each(|(terms, t)| evaluate(t, terms));
+            }
+        } else {
+            for (terms, t) in terms.iter_mut().zip(tets) {
+                evaluate(t, terms);
+            }
+        }
+
+        if self.element_slots.0 != system.id() || self.element_slots.1.len() != tets.len() {
+            self.element_slots.0 = system.id();
+            self.element_slots.1.clear();
+            self.element_slots.1.extend(tets.iter().map(|t| {
+                TET_PAIRS.map(|(p, q)| a.pattern.slot_between(t.vertices[p], t.vertices[q]))
+            }));
+        }
+        // The elements' diagonal blocks are summed per particle into one
+        // row block for the product; the diagonal the preconditioners see
+        // also gets the bounds of the blocks outside the springs' pattern.
+        self.volume_rows.clear();
+        self.volume_rows.resize(n, SymBlock::default());
+        self.volume_diagonals.clear();
+        self.volume_diagonals.resize(n, SymBlock::default());
+        self.volume_rhs.clear();
+        self.volume_rhs.resize(n, Vec3::zeros());
+        let elements = tets
+            .iter()
+            .zip(&self.element_terms)
+            .zip(&self.element_slots.1);
+        for ((t, terms), slots) in elements {
+            if t.modulus <= 0.0 {
+                continue;
+            }
+            for (p, &i) in t.vertices.iter().enumerate() {
+                self.volume_rhs[i] += terms.rhs[p];
+                self.volume_rows[i].add_assign(&terms.diagonal[p]);
+            }
+            for ((&(p, q), &pair), &slot) in TET_PAIRS.iter().zip(&terms.pairs).zip(slots) {
+                let (i, j) = (t.vertices[p], t.vertices[q]);
+                if slot.is_none() {
+                    let bound = SymBlock::scaled_identity(pair.norm());
+                    self.volume_diagonals[i].add_assign(&bound);
+                    self.volume_diagonals[j].add_assign(&bound);
                 }
+                a.add_extra_pair_at(i, j, pair, slot);
+            }
+        }
+        for (i, (row, diagonal)) in self
+            .volume_rows
+            .iter()
+            .zip(&mut self.volume_diagonals)
+            .enumerate()
+        {
+            if *row != SymBlock::default() {
+                diagonal.add_assign(row);
+                a.extra_rows.push((i as u32, *row));
             }
         }
         true
@@ -411,16 +541,15 @@ impl Assembler {
 /// The volume elements' energy `Σ ½ κ V₀ (J − 1)²` at positions `x`, and the
 /// sum of the energies plus the energy the rounding of the vertices'
 /// coordinates puts into them, `κ V₀ |J − 1| |∇J| max|x|` per element
-/// (divided by ε).
+/// (divided by ε), with `|∇J| ≈ V₀^(−1/3)`.
 pub(crate) fn volume_energy(system: &System, x: &[Vec3]) -> (f64, f64) {
     let (mut energy, mut rounding) = (0.0, 0.0);
     for t in system.tets().iter().filter(|t| t.modulus > 0.0) {
-        let e = t.energy(x);
-        let slope = (2.0 * e * t.modulus * t.rest_volume).sqrt();
+        let (stiffness, change) = (t.modulus * t.rest_volume, t.volume_ratio(x) - 1.0);
+        let e = 0.5 * stiffness * change * change;
         let reach = t.vertices.iter().map(|&i| x[i].amax()).fold(0.0, f64::max);
-        let gradient = t.rest_volume.cbrt().recip();
         energy += e;
-        rounding += e + slope * gradient * reach;
+        rounding += e + stiffness * change.abs() * t.gradient_scale() * reach;
     }
     (energy, rounding)
 }
@@ -478,7 +607,10 @@ mod tests {
     /// The assembled right-hand side at a Newton iterate is minus the
     /// gradient of `Φ` in the velocities (central differences of
     /// [`Assembler::potential`]), and the matrix holds `β²h²` times each
-    /// element's projected Hessian between its vertices.
+    /// element's Hessian between its vertices: the exact one with exact
+    /// springs, the projected one with clamped springs, and the
+    /// Gauss–Newton one for Baraff & Witkin's step (one element inverted,
+    /// where the three differ).
     #[test]
     fn volume_terms_are_the_potentials_derivatives() {
         let (system, x_tilde) = system();
@@ -536,26 +668,51 @@ mod tests {
         let w: Vec<Vec3> = (0..n)
             .map(|i| Vec3::new(1.0, -0.5 * i as f64, 0.25 + i as f64))
             .collect();
-        let mut with = vec![Vec3::zeros(); n];
-        a.apply(&w, &mut with);
-        let mut springs_only = a.clone();
-        springs_only.clear_extra();
-        let mut without = vec![Vec3::zeros(); n];
-        springs_only.apply(&w, &mut without);
-        let mut expected = vec![Vec3::zeros(); n];
-        for t in system.tets() {
-            let hessian = t.derivatives(&x, true).hessian;
-            for (p, &i) in t.vertices.iter().enumerate() {
-                for (q, &j) in t.vertices.iter().enumerate() {
-                    expected[i] +=
-                        beta_h * beta_h * hessian.fixed_view::<3, 3>(3 * p, 3 * q) * w[j];
+        let zero = vec![Vec3::zeros(); n];
+        for (compressed, displacement, kind) in [
+            (CompressedSprings::Exact, None, TetHessian::Exact),
+            (CompressedSprings::Clamped, None, TetHessian::Projected),
+            (
+                CompressedSprings::Clamped,
+                Some(&zero[..]),
+                TetHessian::GaussNewton,
+            ),
+        ] {
+            let lin = Linearization {
+                positions: &x,
+                velocities: &v,
+                displacement,
+                inertia: &inertia,
+                beta_h,
+                compressed,
+                freeze_directions: false,
+            };
+            assembler
+                .assemble(&system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+                .unwrap();
+            let mut with = vec![Vec3::zeros(); n];
+            a.apply(&w, &mut with);
+            let mut springs_only = a.clone();
+            springs_only.clear_extra();
+            let mut without = vec![Vec3::zeros(); n];
+            springs_only.apply(&w, &mut without);
+            let mut expected = vec![Vec3::zeros(); n];
+            for t in system.tets() {
+                let hessian = t.derivatives(&x, kind).hessian;
+                for (p, &i) in t.vertices.iter().enumerate() {
+                    for (q, &j) in t.vertices.iter().enumerate() {
+                        expected[i] +=
+                            beta_h * beta_h * hessian.fixed_view::<3, 3>(3 * p, 3 * q) * w[j];
+                    }
                 }
             }
-        }
-        for i in 0..n {
-            assert!(
-                (with[i] - without[i] - expected[i]).norm() < 1e-9 * expected[i].norm().max(1.0)
-            );
+            for i in 0..n {
+                let error = (with[i] - without[i] - expected[i]).norm();
+                assert!(
+                    error < 1e-9 * expected[i].norm().max(1.0),
+                    "{kind:?}: row {i} off by {error}"
+                );
+            }
         }
     }
 

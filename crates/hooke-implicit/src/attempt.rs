@@ -7,9 +7,9 @@ use hooke_core::{CompressedSprings, State, StepError, StepReport, System, Vec3};
 
 use crate::assembly::Linearization;
 use crate::contact::Contact;
-use crate::energy::{energy, pin_work, rounding};
+use crate::energy::{absorption, energy, pin_work, rounding};
 use crate::implicit::{Implicit, Minimizer, Scheme, Work};
-use crate::newton::{self, Iterates, Newton};
+use crate::newton::{self, Iterates, Newton, velocity_scale};
 use crate::solver::{Solve, topology};
 use crate::vector::for_each_row;
 
@@ -142,27 +142,15 @@ impl Implicit {
             &mut self.contact
         });
         let has_contact = contact.is_some();
-        // Baraff & Witkin's linearised step: the whole step when
-        // linearised (without contact), otherwise the first candidate for
-        // Newton's starting point. Its assembly also freezes the dampers'
-        // directions at the step's start. The quasi-Newton step assembles no
-        // matrix: it freezes the directions and starts from vₙ.
-        if quasi.is_some() {
+        // Without contact, Baraff & Witkin's linearised step: the whole step
+        // when linearised, otherwise the first candidate for Newton's
+        // starting point; its assembly also freezes the dampers' directions
+        // at the step's start. With contact, and for the quasi-Newton step
+        // (which assembles no matrix and starts from vₙ), only the
+        // directions are frozen.
+        let lin_steps = if let Some(contact) = contact.as_deref_mut() {
             self.assembler
                 .freeze_directions(system, topology.pattern(), x0);
-        } else {
-            let lin = Linearization {
-                positions: x0,
-                velocities: v0,
-                displacement: Some(u),
-                inertia,
-                beta_h,
-                compressed,
-                freeze_directions: true,
-            };
-            solve.assemble(&mut self.assembler, topology, &lin, b)?;
-        }
-        let lin_steps = if let Some(contact) = contact.as_deref_mut() {
             // Newton starts from the feasible positions of the step's start
             // or, if lower in Φ, from the inertial predictor vₙ + z as far
             // towards it as no pair comes closer than a tenth of its gap.
@@ -181,11 +169,23 @@ impl Implicit {
             for_each_row(trial, |i, t| *t = v[i] + tau * *t);
             1
         } else if quasi.is_some() {
+            self.assembler
+                .freeze_directions(system, topology.pattern(), x0);
             let prescribed = &self.pins.prescribed;
             for_each_row(v, |i, v| *v = v0[i] + prescribed[i]);
             trial.copy_from_slice(v);
             0
         } else {
+            let lin = Linearization {
+                positions: x0,
+                velocities: v0,
+                displacement: Some(u),
+                inertia,
+                beta_h,
+                compressed,
+                freeze_directions: true,
+            };
+            solve.assemble(&mut self.assembler, topology, &lin, b)?;
             if pinned {
                 self.pins.prescribe(topology.matrix(), b);
             }
@@ -268,8 +268,20 @@ impl Implicit {
         }
         let excess = after - before - work - rounding(magnitude_before.max(magnitude_after));
         // Converged backward-Euler steps are held to the energy test; BDF2's
-        // two-step steps and the linearised step only report a gain.
+        // two-step steps and the linearised step only report a gain. A gain
+        // that the kinetic energy absorbs by moving the velocities less
+        // than the stopping rule's tolerance passes (the `energy` module).
         let tested = !linearized && !two_step;
+        let (factor, within_tolerance) = if excess > 0.0 {
+            let (factor, shift) = absorption(system, v, excess);
+            let scale = velocity_scale(system, v.iter().copied(), v0, beta_h);
+            (
+                factor,
+                outcome.converged && shift <= self.newton_tolerance * scale,
+            )
+        } else {
+            (1.0, false)
+        };
         report.newton_iterations += outcome.iterations;
         report.newton_iterations_max = report.newton_iterations_max.max(outcome.iterations);
         let error = self.error_control.and_then(|control| {
@@ -282,7 +294,9 @@ impl Implicit {
                 .map(|err| (err, order))
         });
         let too_large = error.is_some_and(|(err, _)| err > 1.0);
-        if !linearized && !at_floor && (!outcome.converged || (tested && excess > 0.0) || too_large)
+        if !linearized
+            && !at_floor
+            && (!outcome.converged || (tested && excess > 0.0 && !within_tolerance) || too_large)
         {
             self.history = saved_history;
             return Ok(Outcome::Rejected { error });
@@ -301,8 +315,17 @@ impl Implicit {
         if excess > 0.0 {
             report.energy_excess = report.energy_excess.max(excess);
             if tested {
-                absorb(system, v, excess);
-                report.energy_corrections += 1;
+                // The kinetic energy absorbs the gain: within the Newton
+                // tolerance, or at the floor as the last resort (all of
+                // the kinetic energy, if the gain is as large).
+                for_each_row(v, |i, v| {
+                    if !system.is_pinned(i) {
+                        *v *= factor;
+                    }
+                });
+                if !within_tolerance {
+                    report.energy_corrections += 1;
+                }
             }
         }
         let touching = contact.map_or(0, |contact| contact.end_step(system, x));
@@ -325,26 +348,5 @@ impl Implicit {
             easy: 3 * outcome.iterations <= self.newton_iterations,
             error,
         })
-    }
-}
-
-/// The last resort for a step that gained `excess` J at the substep floor:
-/// the free particles' kinetic energy absorbs it (all of it, if it is
-/// large enough), their velocities scaled by one factor.
-fn absorb(system: &System, v: &mut [Vec3], excess: f64) {
-    let masses = system.masses();
-    let kinetic: f64 = (0..v.len())
-        .filter(|&i| !system.is_pinned(i))
-        .map(|i| 0.5 * masses[i] * v[i].norm_squared())
-        .sum();
-    let factor = if kinetic > 0.0 {
-        ((kinetic - excess).max(0.0) / kinetic).sqrt()
-    } else {
-        1.0
-    };
-    for (i, v) in v.iter_mut().enumerate() {
-        if !system.is_pinned(i) {
-            *v *= factor;
-        }
     }
 }

@@ -19,12 +19,38 @@
 //! ```
 //!
 //! with `|E|` the sum of the terms' magnitudes and `ε` the machine epsilon:
-//! the rounding of the sums, nothing more. `W` is estimated by the
-//! trapezoid rule for pins, `½(∇ₚV(xₙ) + ∇ₚV(xₙ₊₁))·(xₚ,ₙ₊₁ − xₚ,ₙ)` over the
-//! springs and elements at each scripted pin `p`, and as
-//! the contact forces times the obstacle's displacement for moving
-//! obstacles (the `contact` module, which also adds the barrier's energy to
-//! `E`); it is zero in the common case of fixed pins and resting obstacles.
+//! the rounding of the sums. `W` is estimated by the trapezoid rule for
+//! pins, `½(∇ₚV(xₙ) + ∇ₚV(xₙ₊₁))·(xₚ,ₙ₊₁ − xₚ,ₙ)` over the springs and
+//! elements at each scripted pin `p`, and as the contact forces times the
+//! obstacle's displacement for moving obstacles (the `contact` module,
+//! which also adds the barrier's energy to `E`); it is zero in the common
+//! case of fixed pins and resting obstacles.
+//!
+//! A converged backward-Euler step changes the energy by
+//!
+//! ```text
+//! E(xₙ₊₁, vₙ₊₁) − E(xₙ, vₙ) = W − ½‖vₙ₊₁ − vₙ‖²_M − D_V(xₙ, xₙ₊₁) − (dissipation),
+//! D_V(xₙ, xₙ₊₁) = V(xₙ) − V(xₙ₊₁) − ∇V(xₙ₊₁)·(xₙ − xₙ₊₁),
+//! ```
+//!
+//! and gains energy only where the potential `V` is not convex along the
+//! step, `D_V < 0`. For a rolling body pressed onto a floor, the springs and
+//! elements are compressed and the straight chord `xₙ₊₁ − xₙ = h vₙ₊₁` of
+//! each rotation also stretches them, releasing some of that stress: the
+//! gain grows as `h²`, the dissipation as `h`, so that halving the step
+//! removes it only at tiny steps. So a gain `ΔE > 0` beyond the allowance
+//! above also passes when the free particles' kinetic energy `K` can absorb
+//! it, their velocities scaled by `s = √(1 − ΔE/K)`, with a change no
+//! larger than the velocity error the Newton iteration's stopping rule
+//! accepts (its decrement bounds `‖δ‖_M ≤ λ ≤ η · scale`, `η` the Newton
+//! tolerance):
+//!
+//! ```text
+//! (1 − s) ‖v‖_M = (1 − s) √(2K) ≤ η · max(‖vₙ₊₁ − vₙ‖_M, ‖vₙ₊₁‖_M, βh‖g‖√(Σmᵢ)).
+//! ```
+//!
+//! The step is then taken with its velocities so scaled: it gains nothing,
+//! and it is as close to the exact step as any converged one.
 
 use hooke_core::{System, Vec3};
 
@@ -53,6 +79,27 @@ pub(crate) fn energy(system: &System, x: &[Vec3], v: &[Vec3]) -> (f64, f64) {
 /// The largest gain `E(x₁, v₁) − E(x₀, v₀)` a step may show from rounding.
 pub(crate) fn rounding(magnitude: f64) -> f64 {
     1e3 * f64::EPSILON * magnitude
+}
+
+/// How the free particles' kinetic energy `K` absorbs a gain `ΔE ≥ 0`: the
+/// factor `s = √(max(K − ΔE, 0)/K)` (1 where `K = 0`) that scales their
+/// velocities, and how far that moves them in the mass norm,
+/// `‖(1 − s) v‖_M = (1 − s)√(2K)` — infinite where `K < ΔE`, which no
+/// scaling absorbs.
+pub(crate) fn absorption(system: &System, v: &[Vec3], excess: f64) -> (f64, f64) {
+    if excess <= 0.0 {
+        return (1.0, 0.0);
+    }
+    let masses = system.masses();
+    let kinetic: f64 = (0..v.len())
+        .filter(|&i| !system.is_pinned(i))
+        .map(|i| 0.5 * masses[i] * v[i].norm_squared())
+        .sum();
+    if kinetic < excess {
+        return (0.0, f64::INFINITY);
+    }
+    let factor = ((kinetic - excess) / kinetic).sqrt();
+    (factor, (1.0 - factor) * (2.0 * kinetic).sqrt())
 }
 
 /// The work scripted pins did on the system over a step from `x0` to `x1`,

@@ -100,10 +100,10 @@ impl Minimizer {
 /// friction's dissipation potential. Newton's method starts at whichever of
 /// `vₙ` and Baraff & Witkin's linearised solution (both with the velocity
 /// changes of pins and contacts applied) has the lower `Φ`, and solves
-/// `(M + βh C + β²h² K) δ = −g` with the exact spring Hessian where that
-/// system is positive definite and compressed springs clamped (each
-/// spring's Hessian projected onto its positive part) where it is not, so
-/// that every step descends. Every iterate, the first one included, is
+/// `(M + βh C + β²h² K) δ = −g` with the exact spring and volume-element
+/// Hessians where that system is positive definite, and with compressed
+/// springs clamped and the elements' Hessians projected (each onto its
+/// positive part) where it is not, so that every step descends. Every iterate, the first one included, is
 /// accepted only through a line search that decreases `Φ` (Armijo,
 /// extended with a watchdog step and extrapolation; see the
 /// `newton` module). It stops when the Newton decrement `λ = √(δᵀAδ)`,
@@ -139,9 +139,17 @@ impl Minimizer {
 /// but a spring's `½k(l − L)²` is not convex under compression, so each
 /// backward-Euler step is also tested: `E(xₙ₊₁, vₙ₊₁) ≤ E(xₙ, vₙ) + W`, with
 /// `E` the kinetic, elastic and gravitational energy of the free particles
-/// and `W` the work of scripted pins and moving obstacles. A step that fails
-/// it, or whose Newton iteration does not converge within its cap, is
-/// rejected and retried as two substeps of half the size, down to a floor
+/// and `W` the work of scripted pins and moving obstacles. A gain `ΔE` that
+/// the free particles' kinetic energy `K` absorbs by scaling their
+/// velocities by `s = √(1 − ΔE/K)` with `(1 − s)√(2K) ≤ ε · scale` (the
+/// stopping rule's tolerance and velocity scale above: the scaled velocities
+/// are as close to the exact step as any converged ones) is absorbed so;
+/// the gains of a rolling body pressed onto a floor (the chord of each
+/// step releases its compression, a Bregman term of the non-convex
+/// potential) are of this kind, and shrink only as `h²` against the
+/// dissipation's `h` (the `energy` module). A step that fails the test
+/// otherwise, or whose Newton iteration does not converge within its cap,
+/// is rejected and retried as two substeps of half the size, down to a floor
 /// of `h / 2^k` (`k` = [`Implicit::MAX_HALVINGS`],
 /// [`Implicit::with_max_halvings`]); after a substep whose Newton iteration
 /// took at most a third of its cap, the size doubles again, up to the step

@@ -143,7 +143,7 @@ mod step;
 mod vector;
 
 pub use amg::{Amg, AmgSettings};
-pub use assembly::{Assembler, Linearization};
+pub use assembly::{Assembler, Linearization, PARALLEL_MIN_ELEMENTS};
 pub use block::SymBlock;
 pub use cg::{BlockJacobi, PcgSettings};
 pub use cholesky::{FactorPreconditioner, SparseCholesky};

@@ -107,8 +107,20 @@ impl BlockMatrix {
 
     /// Adds the block `B` at `(i, j)` and `Bᵀ` at `(j, i)`, `i ≠ j`.
     pub(crate) fn add_extra_pair(&mut self, i: usize, j: usize, block: Mat3) {
+        self.add_extra_pair_at(i, j, block, self.pattern.slot_between(i, j));
+    }
+
+    /// [`Self::add_extra_pair`] with the slot between `i` and `j` known
+    /// (`None`: no spring joins them).
+    pub(crate) fn add_extra_pair_at(
+        &mut self,
+        i: usize,
+        j: usize,
+        block: Mat3,
+        slot: Option<usize>,
+    ) {
         self.extra_pairs.push((i as u32, j as u32, block));
-        match self.pattern.slot_between(i, j) {
+        match slot {
             Some(t) => {
                 if self.extra_at_slots.is_empty() {
                     self.extra_at_slots = vec![Mat3::zeros(); self.pattern.slots()];

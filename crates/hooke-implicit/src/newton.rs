@@ -138,27 +138,18 @@ impl Newton<'_> {
         if slope == 0.0 {
             return 0.0;
         }
-        let masses = self.system.masses();
-        let (mut change, mut speed, mut total) = (0.0, 0.0, 0.0);
-        for (i, ((v, d), v0)) in v.iter().zip(delta).zip(v0).enumerate() {
-            let next = v + d;
-            change += masses[i] * (next - v0).norm_squared();
-            speed += masses[i] * next.norm_squared();
-            total += masses[i];
-        }
-        let gravity = self.system.gravity().map_or(0.0, |g| g.norm());
-        let h = self.beta_h;
-        let scale = change.max(speed).max(total * (h * gravity).powi(2)).sqrt();
-        slope.abs().sqrt() / scale
+        let next = v.iter().zip(delta).map(|(v, d)| v + d);
+        slope.abs().sqrt() / velocity_scale(self.system, next, v0, self.beta_h)
     }
 
     /// Newton's step `δ` at `v`: assembles `(M + βh C + β²h² K) δ = −∇Φ(v)`
-    /// with the exact stiffness blocks (unless an earlier iteration of the
-    /// same step needed the clamp, [`Newton::hessian`]), or — where that
-    /// system is not
+    /// with the exact stiffness blocks of springs and volume elements
+    /// (unless an earlier iteration of the same step needed the clamp,
+    /// [`Newton::hessian`]), or — where that system is not
     /// positive definite or its solution does not descend, and the
     /// integrator clamps compressed springs — with compressed springs
-    /// clamped, adds the contact terms' gradients and projected Hessians,
+    /// clamped and the elements' Hessians projected, adds the contact
+    /// terms' gradients and projected Hessians,
     /// and solves it in the free directions. Returns the slope `∇Φ·δ`.
     ///
     /// # Errors
@@ -413,6 +404,29 @@ impl Newton<'_> {
         let contact = self.contact.as_deref_mut().expect("checked above");
         longest * contact.limit(self.system, self.x, self.motion)
     }
+}
+
+/// The step's velocity scale that the stopping rule measures the Newton
+/// decrement against, `max(‖v − v₀‖_M, ‖v‖_M, βh‖g‖ √(Σ mᵢ))` for the
+/// velocities `v` ([`Newton::decrement`]).
+pub(crate) fn velocity_scale(
+    system: &System,
+    v: impl Iterator<Item = Vec3>,
+    v0: &[Vec3],
+    beta_h: f64,
+) -> f64 {
+    let masses = system.masses();
+    let (mut change, mut speed, mut total) = (0.0, 0.0, 0.0);
+    for (i, (v, v0)) in v.zip(v0).enumerate() {
+        change += masses[i] * (v - v0).norm_squared();
+        speed += masses[i] * v.norm_squared();
+        total += masses[i];
+    }
+    let gravity = system.gravity().map_or(0.0, |g| g.norm());
+    change
+        .max(speed)
+        .max(total * (beta_h * gravity).powi(2))
+        .sqrt()
 }
 
 /// Whether a step that took `Φ` from `start`, with slope `∇Φ·δ`, to `end`

@@ -18,19 +18,6 @@ pub(crate) struct Point<'a> {
 }
 
 impl Assembler {
-    /// Freezes the dampers' directions at positions `x` (the step's start),
-    /// as the first assembly of a step does.
-    pub(crate) fn freeze_directions(&mut self, system: &System, pattern: &Pattern, x: &[Vec3]) {
-        let springs = system.springs();
-        self.directions.resize(pattern.slots(), Vec3::zeros());
-        for_each_row(&mut self.directions, |t, d| {
-            let s = &springs[pattern.spring(t)];
-            *d = (x[s.i] - x[s.j])
-                .try_normalize(0.0)
-                .unwrap_or_else(Vec3::zeros);
-        });
-    }
-
     /// `b = −∇Φ(v) = M(ṽ − v) + βh f(x, v)` with the springs' elastic forces,
     /// their dampers' along the frozen directions, gravity, air damping and
     /// the volume elements' forces (the right-hand side [`Assembler::assemble`]

@@ -16,7 +16,7 @@
 //! (the largest absolute row sum), an upper bound on `ω_max²`, so a caller
 //! can see how tight the estimate is.
 
-use hooke_core::{CompressedSprings, Mat12, System, Vec3};
+use hooke_core::{CompressedSprings, Mat12, System, TetHessian, Vec3};
 
 /// The power iteration's cap.
 pub const MAX_ITERATIONS: usize = 2000;
@@ -82,7 +82,7 @@ pub fn omega_max(system: &System) -> Spectrum {
         tets: system
             .tets()
             .iter()
-            .map(|t| t.derivatives(x0, true).hessian)
+            .map(|t| t.derivatives(x0, TetHessian::Projected).hessian)
             .collect(),
     };
     // M^(−1/2), zero on pinned particles so that they drop out.
