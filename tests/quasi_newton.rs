@@ -9,7 +9,7 @@ mod common;
 use hooke::core::reference::Sheet;
 use hooke::implicit::{Implicit, LinearSolver, Minimizer};
 use hooke::prelude::*;
-use hooke::scenes::{Cloth, Lattice, Mass, Springs, TetSplit, Volume};
+use hooke::scenes::{Cloth, Mass, Volume};
 
 /// A tight relative tolerance for both minimisers.
 const TIGHT: f64 = 1e-8;
@@ -123,16 +123,7 @@ fn a_rope_swinging_from_its_pin() {
 
 #[test]
 fn a_tet_lattice_with_volume_elements() {
-    let system = Lattice::tets(3, 3, 3, TetSplit::Six)
-        .size([0.2, 0.2, 0.2])
-        .mass(Mass::Density(1000.0))
-        .edges(Springs::modulus(2e4).damping(0.5))
-        .volume(Volume::Auto)
-        .pin(0)
-        .build()
-        .unwrap()
-        .system([0.0, -9.81, 0.0])
-        .unwrap();
+    let system = common::tet_cube_with(3, Volume::Auto);
     assert!(!system.tets().is_empty());
     let mut start = system.initial_state();
     // Squeezed by 10 % along y and spinning about it.

@@ -104,15 +104,21 @@ pub fn long_rope(segments: usize) -> System {
 
 /// A 0.2 m cube of `cells`³ cubes split into six tetrahedra each
 /// (`(cells + 1)³` particles), 1 000 kg/m³, springs of modulus 2·10⁴ N on
-/// the edges (damped by 0.5 N·s/m), one corner pinned.
+/// the edges (damped by 0.5 N·s/m), one corner pinned, springs only: the
+/// solver comparisons measure the springs' matrix.
 #[allow(dead_code)] // used by the multigrid tests and the solvers bench
 pub fn tet_cube(cells: usize) -> System {
+    tet_cube_with(cells, Volume::Off)
+}
+
+/// [`tet_cube`] with the volume elements `volume`.
+#[allow(dead_code)] // used by the quasi-Newton tests and through tet_cube
+pub fn tet_cube_with(cells: usize, volume: Volume) -> System {
     Lattice::tets(cells, cells, cells, TetSplit::Six)
         .size([0.2, 0.2, 0.2])
         .mass(Mass::Density(1000.0))
         .edges(Springs::modulus(2e4).damping(0.5))
-        // Springs only: the solver comparisons measure the springs' matrix.
-        .volume(Volume::Off)
+        .volume(volume)
         .pin(0)
         .build()
         .unwrap()

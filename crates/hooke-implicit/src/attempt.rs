@@ -148,9 +148,13 @@ impl Implicit {
         // at the step's start. With contact, and for the quasi-Newton step
         // (which assembles no matrix and starts from vₙ), only the
         // directions are frozen.
-        let lin_steps = if let Some(contact) = contact.as_deref_mut() {
+        if has_contact || quasi.is_some() {
             self.assembler
                 .freeze_directions(system, topology.pattern(), x0);
+        }
+        // The starting candidates: the first in `v`, a second in `trial`
+        // (none for the quasi-Newton step without contact).
+        let (lin_steps, second_start) = if let Some(contact) = contact.as_deref_mut() {
             // Newton starts from the feasible positions of the step's start
             // or, if lower in Φ, from the inertial predictor vₙ + z as far
             // towards it as no pair comes closer than a tenth of its gap.
@@ -167,14 +171,11 @@ impl Implicit {
             for_each_row(ahead, |i, a| *a = beta_h * trial[i]);
             let tau = contact.limit(system, x, ahead);
             for_each_row(trial, |i, t| *t = v[i] + tau * *t);
-            1
+            (1, true)
         } else if quasi.is_some() {
-            self.assembler
-                .freeze_directions(system, topology.pattern(), x0);
             let prescribed = &self.pins.prescribed;
             for_each_row(v, |i, v| *v = v0[i] + prescribed[i]);
-            trial.copy_from_slice(v);
-            0
+            (0, false)
         } else {
             let lin = Linearization {
                 positions: x0,
@@ -193,7 +194,7 @@ impl Implicit {
             let prescribed = &self.pins.prescribed;
             for_each_row(v, |i, v| *v = v0[i] + dv[i] + prescribed[i]);
             for_each_row(trial, |i, t| *t = v0[i] + prescribed[i]);
-            0
+            (0, true)
         };
         let mut newton = Newton {
             system,
@@ -229,12 +230,13 @@ impl Implicit {
             // directions. With contact, the linearised step is one Newton
             // step from there, bounded by collision detection.
             let first = newton.potential(v);
-            let second = newton.potential(trial);
-            let start = if second.value < first.value {
-                std::mem::swap(v, trial);
-                second
-            } else {
-                first
+            let second = second_start.then(|| newton.potential(trial));
+            let start = match second {
+                Some(second) if second.value < first.value => {
+                    std::mem::swap(v, trial);
+                    second
+                }
+                _ => first,
             };
             let mut iterates = Iterates {
                 v,

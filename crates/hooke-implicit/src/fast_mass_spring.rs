@@ -139,7 +139,14 @@ impl Integrator for FastMassSpring {
             Some(m) if m.is_for(system) => {
                 m.refactor(system, weights, (dt.to_bits(), &[]), state.time())?;
             }
-            _ => *matrix = Some(Laplacian::new(system, weights, dt.to_bits(), state.time())?),
+            _ => {
+                *matrix = Some(Laplacian::new(
+                    system,
+                    weights,
+                    (dt.to_bits(), &[]),
+                    state.time(),
+                )?);
+            }
         }
         let prefactored = matrix.as_mut().expect("factorized above");
         let (x0, v0, time) = (state.positions(), state.velocities(), state.time());

@@ -38,7 +38,8 @@ pub(crate) struct Laplacian {
 impl Laplacian {
     /// The pattern of `system`'s matrix, its symbolic analysis and its
     /// factor for the air-damping coefficient `air`, the spring weights
-    /// `weight` and `key` (at `time`, for the errors).
+    /// `weight`, `key` and the extra diagonal `extra` (see
+    /// [`Laplacian::refactor`]; at `time`, for the errors).
     ///
     /// # Errors
     /// [`StepError::SystemTooLarge`] beyond 32-bit indices,
@@ -46,7 +47,7 @@ impl Laplacian {
     pub(crate) fn new(
         system: &System,
         (air, weight): (f64, impl Fn(&Spring) -> f64),
-        key: u64,
+        (key, extra): (u64, &[f64]),
         time: f64,
     ) -> Result<Self, StepError> {
         let n = system.particle_count();
@@ -123,7 +124,7 @@ impl Laplacian {
             cholesky,
             rhs: vec![0.0; 3 * free],
         };
-        laplacian.refactor(system, (air, weight), (key, &[]), time)?;
+        laplacian.refactor(system, (air, weight), (key, extra), time)?;
         Ok(laplacian)
     }
 

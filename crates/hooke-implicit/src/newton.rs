@@ -155,11 +155,6 @@ impl Newton<'_> {
     /// # Errors
     /// Assembly and solver errors.
     fn direction(&mut self, v: &[Vec3], delta: &mut [Vec3]) -> Result<f64, StepError> {
-        if let Some(quasi) = self.quasi.take() {
-            let slope = self.quasi_direction(quasi, v, delta);
-            self.quasi = Some(quasi);
-            return slope;
-        }
         let (system, x_tilde, v_tilde, beta_h) =
             (self.system, self.x_tilde, self.v_tilde, self.beta_h);
         let masses = system.masses();
@@ -167,6 +162,11 @@ impl Newton<'_> {
             *x = x_tilde[i] + beta_h * v[i];
             *inertia = -masses[i] * (v[i] - v_tilde[i]);
         });
+        if let Some(quasi) = self.quasi.take() {
+            let slope = self.quasi_direction(quasi, v, delta);
+            self.quasi = Some(quasi);
+            return slope;
+        }
         let mut hessian = self.hessian;
         loop {
             let lin = Linearization {
@@ -205,7 +205,8 @@ impl Newton<'_> {
         Ok(-dot(self.b, delta))
     }
 
-    /// The quasi-Newton step at `v` (see the `quasi_newton` module): the
+    /// The quasi-Newton step at `v` (see the `quasi_newton` module), whose
+    /// positions and inertia term [`Newton::direction`] filled: the
     /// residual `−∇Φ(v)` with the contact terms' gradients, without any
     /// matrix, then L-BFGS's two-loop recursion. Returns the slope `∇Φ·δ`.
     ///
@@ -217,13 +218,7 @@ impl Newton<'_> {
         v: &[Vec3],
         delta: &mut [Vec3],
     ) -> Result<f64, StepError> {
-        let (system, x_tilde, v_tilde, beta_h) =
-            (self.system, self.x_tilde, self.v_tilde, self.beta_h);
-        let masses = system.masses();
-        for_each_row2(self.x, self.inertia, |i, x, inertia| {
-            *x = x_tilde[i] + beta_h * v[i];
-            *inertia = masses[i] * (v_tilde[i] - v[i]);
-        });
+        let (system, beta_h) = (self.system, self.beta_h);
         let point = Point {
             x: self.x,
             v,

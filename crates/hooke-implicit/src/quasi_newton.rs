@@ -90,15 +90,14 @@ impl QuasiNewton {
         history: usize,
         time: f64,
     ) -> Result<(), StepError> {
-        let key = beta_h.to_bits();
         self.beta_h = beta_h;
         self.pending = contact;
-        match &mut self.laplacian {
-            Some(l) if contact || l.matches(system, key) => {}
-            Some(l) if l.is_for(system) => {
-                l.refactor(system, weights(beta_h), (key, &[]), time)?;
-            }
-            slot => *slot = Some(Laplacian::new(system, weights(beta_h), key, time)?),
+        let factorized = self
+            .laplacian
+            .as_ref()
+            .is_some_and(|l| l.matches(system, beta_h.to_bits()));
+        if !contact && !factorized {
+            self.factorize(system, &[], time)?;
         }
         let n = system.particle_count();
         self.history = history;
@@ -138,20 +137,26 @@ impl QuasiNewton {
         time: f64,
     ) -> Result<(), StepError> {
         self.pending = false;
-        self.stand_in.clear();
-        self.stand_in.resize(system.particle_count(), 0.0);
+        let mut stand_in = std::mem::take(&mut self.stand_in);
+        stand_in.clear();
+        stand_in.resize(system.particle_count(), 0.0);
         for (i, block) in blocks {
-            self.stand_in[*i as usize] += block.to_mat3().trace().max(0.0);
+            stand_in[*i as usize] += block.to_mat3().trace().max(0.0);
         }
-        let (beta_h, key) = (self.beta_h, self.beta_h.to_bits());
+        let factorized = self.factorize(system, &stand_in, time);
+        self.stand_in = stand_in;
+        factorized
+    }
+
+    /// Factorizes `H₀` for the current `βh` with the extra diagonal
+    /// `extra` (none if empty), on the pattern kept for `system` or a new
+    /// one.
+    fn factorize(&mut self, system: &System, extra: &[f64], time: f64) -> Result<(), StepError> {
+        let (beta_h, key) = (self.beta_h, (self.beta_h.to_bits(), extra));
         match &mut self.laplacian {
-            Some(l) if l.is_for(system) => {
-                l.refactor(system, weights(beta_h), (key, &self.stand_in), time)
-            }
+            Some(l) if l.is_for(system) => l.refactor(system, weights(beta_h), key, time),
             slot => {
-                let mut l = Laplacian::new(system, weights(beta_h), key, time)?;
-                l.refactor(system, weights(beta_h), (key, &self.stand_in), time)?;
-                *slot = Some(l);
+                *slot = Some(Laplacian::new(system, weights(beta_h), key, time)?);
                 Ok(())
             }
         }

@@ -252,18 +252,28 @@ fn implicit(
         .history
         .as_ref()
         .map_or(Minimizer::HISTORY, |v| *v.get_ref());
+    // The minimisers by their own names; "converged" is Newton's old name.
+    let minimizers = [
+        Minimizer::Newton,
+        Minimizer::QuasiNewton { history },
+        Minimizer::Linearized,
+    ];
     let minimizer = match t.step.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
-        None | Some(("converged" | "newton", _)) => Minimizer::Newton,
-        Some(("quasi-newton", _)) => Minimizer::QuasiNewton { history },
-        Some(("linearized", _)) => Minimizer::Linearized,
-        Some((other, span)) => {
-            return Err(src.invalid(
-                span,
-                "integrator.step",
-                format!("\"{other}\""),
-                "\"newton\" (or \"converged\"), \"quasi-newton\" or \"linearized\"",
-            ));
-        }
+        None | Some(("converged", _)) => Minimizer::Newton,
+        Some((name, span)) => minimizers
+            .into_iter()
+            .find(|m| m.name() == name)
+            .ok_or_else(|| {
+                src.invalid(
+                    span,
+                    "integrator.step",
+                    format!("\"{name}\""),
+                    format!(
+                        "{} (or \"converged\" for \"newton\")",
+                        quoted_list(minimizers.iter().map(|m| m.name()))
+                    ),
+                )
+            })?,
     };
     if let (Some(h), false) = (
         &t.history,
