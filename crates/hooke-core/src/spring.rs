@@ -138,18 +138,30 @@ impl Spring {
         0.5 * self.stiffness * stretch * stretch
     }
 
+    /// The stretch `l − L` and the elastic force on particle `i`,
+    /// `−k (l − L) d` (as [`Spring::elastic_force`]), the length computed
+    /// once: what the energy `½ k (l − L)²` and the force need together.
+    #[must_use]
+    #[inline]
+    pub fn stretch_and_force(&self, xi: Vec3, xj: Vec3) -> (f64, Vec3) {
+        if self.rest_length == 0.0 {
+            return (self.length(xi, xj), -self.stiffness * (xi - xj));
+        }
+        match direction(xi, xj) {
+            Some((d, l)) => {
+                let stretch = l - self.rest_length;
+                (stretch, -self.stiffness * stretch * d)
+            }
+            None => (-self.rest_length, Vec3::zeros()),
+        }
+    }
+
     /// Elastic force on particle `i`, `−k (l − L) d`; the force on `j` is its
     /// negative.
     #[must_use]
     #[inline]
     pub fn elastic_force(&self, xi: Vec3, xj: Vec3) -> Vec3 {
-        if self.rest_length == 0.0 {
-            return -self.stiffness * (xi - xj);
-        }
-        match direction(xi, xj) {
-            Some((d, l)) => -self.stiffness * (l - self.rest_length) * d,
-            None => Vec3::zeros(),
-        }
+        self.stretch_and_force(xi, xj).1
     }
 
     /// Damping force on particle `i`, `−c ((vᵢ − vⱼ)·d) d`; the force on `j` is
@@ -286,6 +298,33 @@ mod tests {
         );
         assert_eq!(s.damping_block(x, x), Mat3::zeros());
         assert_relative_eq!(s.energy(x, x), 0.5 * 7.0);
+    }
+
+    /// The stretch gives the energy `½k(l − L)²`, and the force is minus
+    /// the energy's gradient in `xᵢ` (central differences), stretched,
+    /// compressed and at zero rest length.
+    #[test]
+    fn stretch_and_force_are_the_energy_and_its_slope() {
+        let xj = Vec3::new(0.1, -0.4, 0.2);
+        for (rest, xi) in [
+            (1.0, Vec3::new(1.3, 0.5, -0.2)),
+            (1.0, Vec3::new(0.4, -0.1, 0.3)),
+            (0.0, Vec3::new(0.7, 0.2, 0.9)),
+        ] {
+            let s = spring(rest);
+            let (stretch, force) = s.stretch_and_force(xi, xj);
+            assert_relative_eq!(
+                0.5 * 7.0 * stretch * stretch,
+                s.energy(xi, xj),
+                epsilon = 1e-14
+            );
+            let h = 1e-6;
+            let slope = Vec3::from_fn(|c, _| {
+                let e = Vec3::ith(c, h);
+                (s.energy(xi + e, xj) - s.energy(xi - e, xj)) / (2.0 * h)
+            });
+            assert_relative_eq!(force, -slope, epsilon = 1e-8);
+        }
     }
 
     #[test]

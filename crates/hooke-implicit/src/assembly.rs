@@ -34,7 +34,9 @@
 use std::ops::Range;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use hooke_core::{CompressedSprings, Mat3, StepError, System, TET_PAIRS, Tet, TetHessian, Vec3};
+use hooke_core::{
+    CompressedSprings, Mat3, Spring, StepError, System, TET_PAIRS, Tet, TetHessian, Vec3,
+};
 
 use crate::block::SymBlock;
 use crate::cg::BlockJacobi;
@@ -504,31 +506,17 @@ impl Assembler {
         v_tilde: &[Vec3],
         beta_h: f64,
     ) -> Potential {
-        let masses = system.masses();
-        let g = system.gravity().unwrap_or_else(Vec3::zeros);
-        let gamma = system.air_damping().unwrap_or(0.0);
-        let (particles, particles_magnitude) = sum2(x.len(), |i| {
-            let m = masses[i];
-            let inertia = 0.5 * m * (v[i] - v_tilde[i]).norm_squared();
-            let gravitational = -m * g.dot(&x[i]);
-            let air = 0.5 * beta_h * gamma * v[i].norm_squared();
-            (
-                inertia + gravitational + air,
-                inertia + gravitational.abs() + air,
-            )
-        });
+        let (particles, particles_magnitude) = particles_potential(system, x, v, v_tilde, beta_h);
         let (springs, springs_rounding) = sum2(pattern.slots(), |t| {
             let s = &system.springs()[pattern.spring(t)];
             let (xi, xj) = (x[s.i], x[s.j]);
-            // ½k(l − L)² with its length computed once for the rounding too.
             let stretch = (xi - xj).norm() - s.rest_length;
-            let mut e = 0.5 * s.stiffness * stretch * stretch;
-            let rounding = s.stiffness * stretch.abs() * (xi.amax() + xj.amax());
-            if s.damping > 0.0 {
-                let rate = self.directions[t].dot(&(v[s.i] - v[s.j]));
-                e += 0.5 * beta_h * s.damping * rate * rate;
-            }
-            (e, e + rounding)
+            let rate = if s.damping > 0.0 {
+                self.directions[t].dot(&(v[s.i] - v[s.j]))
+            } else {
+                0.0
+            };
+            spring_potential(s, (xi, xj), stretch, rate, beta_h)
         });
         let (volume, volume_rounding) = volume_energy(system, x);
         Potential {
@@ -536,6 +524,52 @@ impl Assembler {
             rounding: f64::EPSILON * (particles_magnitude + springs_rounding + volume_rounding),
         }
     }
+}
+
+/// The particles' terms of `Φ` at positions `x` and velocities `v`,
+/// `Σ ½ mᵢ|vᵢ − ṽᵢ|² − mᵢ g·xᵢ + ½βh γ |vᵢ|²`, and the sum of their
+/// magnitudes.
+pub(crate) fn particles_potential(
+    system: &System,
+    x: &[Vec3],
+    v: &[Vec3],
+    v_tilde: &[Vec3],
+    beta_h: f64,
+) -> (f64, f64) {
+    let masses = system.masses();
+    let g = system.gravity().unwrap_or_else(Vec3::zeros);
+    let gamma = system.air_damping().unwrap_or(0.0);
+    sum2(x.len(), |i| {
+        let m = masses[i];
+        let inertia = 0.5 * m * (v[i] - v_tilde[i]).norm_squared();
+        let gravitational = -m * g.dot(&x[i]);
+        let air = 0.5 * beta_h * gamma * v[i].norm_squared();
+        (
+            inertia + gravitational + air,
+            inertia + gravitational.abs() + air,
+        )
+    })
+}
+
+/// A spring's terms of `Φ` with its ends at `(xᵢ, xⱼ)`, stretched by
+/// `l − L` and its ends parting at the rate `d·(vᵢ − vⱼ)` along the
+/// frozen damping direction: `½k(l − L)² + ½βh c (d·(vᵢ − vⱼ))²`, and that
+/// plus `k |l − L| (|xᵢ| + |xⱼ|)`, the energy the rounding of its ends'
+/// coordinates puts into it (divided by ε).
+#[inline]
+pub(crate) fn spring_potential(
+    s: &Spring,
+    (xi, xj): (Vec3, Vec3),
+    stretch: f64,
+    rate: f64,
+    beta_h: f64,
+) -> (f64, f64) {
+    let mut e = 0.5 * s.stiffness * stretch * stretch;
+    if s.damping > 0.0 {
+        e += 0.5 * beta_h * s.damping * rate * rate;
+    }
+    let rounding = s.stiffness * stretch.abs() * (xi.amax() + xj.amax());
+    (e, e + rounding)
 }
 
 /// The volume elements' energy `Σ ½ κ V₀ (J − 1)²` at positions `x`, and the
@@ -602,6 +636,61 @@ mod tests {
         });
         x[1] += Vec3::new(0.2, 0.1, -0.1);
         (system, x)
+    }
+
+    /// The quasi-Newton step's one pass ([`Assembler::evaluate`]) gives the
+    /// value and rounding of [`Assembler::potential`] and minus the
+    /// gradient of `Φ` in the velocities (central differences), with
+    /// damped springs along frozen directions, volume elements (one
+    /// inverted), gravity and air damping.
+    #[test]
+    fn one_pass_gives_the_potential_and_its_gradient() {
+        let (system, x_tilde) = system();
+        let n = system.particle_count();
+        let beta_h = 0.02;
+        let pattern = Pattern::new(&system).unwrap();
+        let v: Vec<Vec3> = (0..n)
+            .map(|i| Vec3::new(0.3 * i as f64, -0.2, 0.1 * (i as f64).sin()))
+            .collect();
+        let v_tilde: Vec<Vec3> = (0..n)
+            .map(|i| Vec3::new(0.1, 0.2 * i as f64, 0.0))
+            .collect();
+        let positions = |v: &[Vec3]| -> Vec<Vec3> {
+            x_tilde.iter().zip(v).map(|(x, v)| x + beta_h * v).collect()
+        };
+        let x = positions(&v);
+        let mut assembler = Assembler::default();
+        assembler.freeze_directions(&system, &pattern, &x_tilde);
+        let mut b = vec![Vec3::zeros(); n];
+        let point = crate::residual::Point {
+            x: &x,
+            v: &v,
+            v_tilde: &v_tilde,
+            beta_h,
+        };
+        let both = assembler.evaluate(&system, &pattern, point, &mut b);
+        let alone = assembler.potential(&system, &pattern, &x, &v, &v_tilde, beta_h);
+        assert!((both.value - alone.value).abs() <= 1e-12 * alone.value.abs());
+        assert!((both.rounding - alone.rounding).abs() <= 1e-12 * alone.rounding);
+        let phi = |v: &[Vec3]| {
+            assembler
+                .potential(&system, &pattern, &positions(v), v, &v_tilde, beta_h)
+                .value
+        };
+        let h = 1e-6;
+        for i in 0..n {
+            for c in 0..3 {
+                let (mut plus, mut minus) = (v.clone(), v.clone());
+                plus[i][c] += h;
+                minus[i][c] -= h;
+                let numeric = (phi(&plus) - phi(&minus)) / (2.0 * h);
+                assert!(
+                    (numeric + b[i][c]).abs() < 1e-6 * (1.0 + numeric.abs()),
+                    "∂Φ/∂v[{i}][{c}] = {numeric}, one pass −b = {}",
+                    -b[i][c]
+                );
+            }
+        }
     }
 
     /// The assembled right-hand side at a Newton iterate is minus the

@@ -215,6 +215,7 @@ impl Implicit {
             inexact: self.inexact_newton,
             hessian: CompressedSprings::Exact,
             quasi,
+            evaluated_residual: false,
         };
         let outcome = if linearized && !has_contact {
             newton::Outcome {
@@ -229,15 +230,7 @@ impl Implicit {
             // as contact allows). Every Newton step then lies in the free
             // directions. With contact, the linearised step is one Newton
             // step from there, bounded by collision detection.
-            let first = newton.potential(v);
-            let second = second_start.then(|| newton.potential(trial));
-            let start = match second {
-                Some(second) if second.value < first.value => {
-                    std::mem::swap(v, trial);
-                    second
-                }
-                _ => first,
-            };
+            let start = newton.start(v, second_start.then_some(&mut *trial));
             let mut iterates = Iterates {
                 v,
                 delta,

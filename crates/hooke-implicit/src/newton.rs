@@ -7,7 +7,7 @@ use hooke_core::{CompressedSprings, StepError, StepReport, System, Vec3};
 use crate::assembly::{Assembler, Linearization, Potential};
 use crate::contact::Contact;
 use crate::quasi_newton::QuasiNewton;
-use crate::residual::Point;
+use crate::residual::{Point, check_finite};
 use crate::solver::{Solve, Topology};
 use crate::vector::{dot, for_each_row, for_each_row2};
 
@@ -91,6 +91,10 @@ pub(crate) struct Newton<'a> {
     /// The quasi-Newton state, when the directions are L-BFGS's instead of
     /// Newton's.
     pub(crate) quasi: Option<&'a mut QuasiNewton>,
+    /// Whether `b` holds `−∇Φ`, without the contact terms, at the point
+    /// [`Newton::potential`] evaluated last (the quasi-Newton step's, whose
+    /// next direction reuses it where that point becomes the iterate).
+    pub(crate) evaluated_residual: bool,
 }
 
 impl Newton<'_> {
@@ -101,24 +105,48 @@ impl Newton<'_> {
     }
 
     /// `Φ(v)`, its contact terms included (infinite where a gap is not
-    /// positive), and its rounding level.
+    /// positive), and its rounding level. For the quasi-Newton step, the
+    /// same pass over the springs leaves `−∇Φ(v)` without the contact terms
+    /// in `b` ([`Newton::evaluated_residual`]).
     pub(crate) fn potential(&mut self, v: &[Vec3]) -> Potential {
         self.positions(v);
-        let beta_h = self.beta_h;
-        let mut potential = self.assembler.potential(
-            self.system,
-            self.topology.pattern(),
-            self.x,
-            v,
-            self.v_tilde,
-            beta_h,
-        );
+        let (system, pattern, beta_h) = (self.system, self.topology.pattern(), self.beta_h);
+        self.evaluated_residual = self.quasi.is_some();
+        let mut potential = if self.evaluated_residual {
+            let point = Point {
+                x: self.x,
+                v,
+                v_tilde: self.v_tilde,
+                beta_h,
+            };
+            self.assembler.evaluate(system, pattern, point, self.b)
+        } else {
+            self.assembler
+                .potential(system, pattern, self.x, v, self.v_tilde, beta_h)
+        };
         if let Some(contact) = self.contact.as_deref_mut() {
-            let terms = contact.value(self.system, self.x, v, beta_h);
+            let terms = contact.value(system, self.x, v, beta_h);
             potential.value += terms;
             potential.rounding += f64::EPSILON * terms.abs();
         }
         potential
+    }
+
+    /// The starting point of the iteration: `v`, or `trial` (swapped into
+    /// `v`) if given and lower in `Φ`; returns `Φ` there.
+    pub(crate) fn start(&mut self, v: &mut Vec<Vec3>, trial: Option<&mut Vec<Vec3>>) -> Potential {
+        let first = self.potential(v);
+        let Some(trial) = trial else {
+            return first;
+        };
+        let second = self.potential(trial);
+        if second.value < first.value {
+            std::mem::swap(v, trial);
+            second
+        } else {
+            self.evaluated_residual = false;
+            first
+        }
     }
 
     /// The Newton decrement `λ = √|∇Φ·δ|` relative to the step's velocity
@@ -219,15 +247,17 @@ impl Newton<'_> {
         delta: &mut [Vec3],
     ) -> Result<f64, StepError> {
         let (system, beta_h) = (self.system, self.beta_h);
-        let point = Point {
-            x: self.x,
-            v,
-            inertia: self.inertia,
-            beta_h,
-        };
-        let pattern = self.topology.pattern();
-        self.assembler
-            .residual(system, pattern, point, self.b, self.solve.time)?;
+        if !std::mem::take(&mut self.evaluated_residual) {
+            let point = Point {
+                x: self.x,
+                v,
+                v_tilde: self.v_tilde,
+                beta_h,
+            };
+            let pattern = self.topology.pattern();
+            self.assembler.evaluate(system, pattern, point, self.b);
+        }
+        check_finite(system, self.b, self.solve.time)?;
         if let Some(contact) = self.contact.as_deref_mut() {
             // The contact terms' Hessian blocks land in the matrix's extra
             // blocks: their diagonal ones give the stand-in on H₀ at the
@@ -256,13 +286,21 @@ impl Newton<'_> {
     /// Every iterate is accepted through the Armijo condition
     /// `Φ(v + αδ) ≤ Φ(v) + 10⁻⁴ α ∇Φ·δ`:
     ///
-    /// - a full step that meets it is extended by doubling `α` (up to 64)
-    ///   while `Φ` keeps falling and collision detection allows the motion
-    ///   from `α/2` to `α` (checking only that piece keeps continuous
-    ///   collision detection, whose cost grows with the motion, to the
-    ///   step that is tried): where the model is stiffer than `Φ` (a
-    ///   clamped compressed spring, the quartic energy of a flat sheet
-    ///   bending) Newton's step undershoots;
+    /// - a full step that meets it is extended where the model is stiffer
+    ///   than `Φ` and the step undershoots (a clamped compressed spring,
+    ///   the quartic energy of a flat sheet bending, the quasi-Newton
+    ///   step's initial Hessian `kI` per spring, stiff across a spring
+    ///   where `Φ` is soft), if the quadratic through `Φ(v)`, the slope and
+    ///   `Φ(v + δ)` has its minimum `α*` beyond 1.5 or is not convex.
+    ///   Newton's step doubles `α` (up to 64) while `Φ` keeps falling.
+    ///   L-BFGS's undershoots at almost every iteration, by far more (on
+    ///   the 50 × 50 cloth of the `work_precision` bench, `α*` has a median
+    ///   of 3.5 and reaches 9): it tries `α = min(α*, 64)` once and keeps
+    ///   it if `Φ` is lower there, one evaluation where doubling took
+    ///   three, and doubles below `α*` only if not. Collision detection
+    ///   checks each extension's motion from the last point only, which
+    ///   keeps its cost, growing with the motion, to the step that is
+    ///   tried;
     /// - a full step that fails it gets the watchdog: one more Newton step
     ///   from the full step's end, accepted if that point meets the Armijo
     ///   condition relative to the iterate (Chamberlain, Powell, Lemaréchal &
@@ -326,27 +364,7 @@ impl Newton<'_> {
                 combine(it.trial, it.v, 1.0, it.delta);
                 let full = self.potential(it.trial);
                 if sufficient(full, 1.0) {
-                    let previous = current.value;
-                    current = full;
-                    let mut alpha = if extends(previous, slope, full.value) {
-                        2.0
-                    } else {
-                        f64::INFINITY
-                    };
-                    // Each doubling checks the motion from the last point,
-                    // `α/2 δ`, for collisions.
-                    while alpha <= MAX_EXTRAPOLATION
-                        && self.limit(it.trial, it.delta, 0.5 * alpha) >= 0.5 * alpha
-                    {
-                        combine(it.look, it.v, alpha, it.delta);
-                        let further = self.potential(it.look);
-                        if further.value >= current.value {
-                            break;
-                        }
-                        current = further;
-                        std::mem::swap(it.trial, it.look);
-                        alpha *= 2.0;
-                    }
+                    current = self.extend(it, current.value, slope, full);
                     std::mem::swap(it.v, it.trial);
                     continue;
                 }
@@ -383,6 +401,54 @@ impl Newton<'_> {
             std::mem::swap(it.v, it.trial);
         }
         Ok(outcome)
+    }
+
+    /// Extends an accepted full step `it.trial = v + δ`, where `Φ` fell
+    /// from `start` (with slope `∇Φ·δ`) to `full`, as [`Newton::minimize`]
+    /// describes: if the minimum `α*` of the quadratic model lies beyond
+    /// 1.5 (or the model is not convex), Newton's step by doublings up to
+    /// 64, the quasi-Newton step to `α*` (at most 64) and, if `Φ` is not
+    /// lower there, by doublings below it. Leaves the lowest point tried in
+    /// `it.trial` and returns `Φ` there.
+    fn extend(
+        &mut self,
+        it: &mut Iterates<'_>,
+        start: f64,
+        slope: f64,
+        full: Potential,
+    ) -> Potential {
+        let mut current = full;
+        let minimum = model_minimum(start, slope, full.value).map(|m| m.min(MAX_EXTRAPOLATION));
+        let mut doubling_below = match minimum {
+            Some(alpha) if alpha <= 1.5 => return current,
+            Some(alpha) if self.quasi.is_some() => alpha,
+            _ => f64::INFINITY,
+        };
+        let reach = doubling_below - 1.0;
+        if doubling_below.is_finite() && self.limit(it.trial, it.delta, reach) >= reach {
+            combine(it.look, it.v, doubling_below, it.delta);
+            let further = self.potential(it.look);
+            if further.value < current.value {
+                std::mem::swap(it.trial, it.look);
+                return further;
+            }
+            self.evaluated_residual = false;
+        }
+        // Each doubling checks the motion from the last point, `α/2 δ`.
+        let mut alpha = 2.0;
+        doubling_below = doubling_below.min(2.0 * MAX_EXTRAPOLATION);
+        while alpha < doubling_below && self.limit(it.trial, it.delta, 0.5 * alpha) >= 0.5 * alpha {
+            combine(it.look, it.v, alpha, it.delta);
+            let further = self.potential(it.look);
+            if further.value >= current.value {
+                self.evaluated_residual = false;
+                break;
+            }
+            current = further;
+            std::mem::swap(it.trial, it.look);
+            alpha *= 2.0;
+        }
+        current
     }
 
     /// The longest multiple `α ≤ longest` of the step `δ` from `v` that
@@ -424,14 +490,12 @@ pub(crate) fn velocity_scale(
         .sqrt()
 }
 
-/// Whether a step that took `Φ` from `start`, with slope `∇Φ·δ`, to `end`
-/// at the full step is worth extending: the quadratic through the three
-/// has its minimum beyond `1.5 δ` (or is not convex). A doubling whose
-/// trial would not lower `Φ` costs a collision check and an evaluation of
-/// `Φ`; this skips it where the model says the full step is about right.
-fn extends(start: f64, slope: f64, end: f64) -> bool {
+/// Where the quadratic through `Φ(0) = start`, its slope `∇Φ·δ` and
+/// `Φ(1) = end` along a step has its minimum, `−slope / 2(end − start −
+/// slope)`; `None` where that quadratic is not convex.
+fn model_minimum(start: f64, slope: f64, end: f64) -> Option<f64> {
     let curvature = end - start - slope;
-    curvature <= 0.0 || -slope / (2.0 * curvature) > 1.5
+    (curvature > 0.0).then(|| -slope / (2.0 * curvature))
 }
 
 /// `v += δ`.

@@ -18,7 +18,9 @@
 //! one gradient of `Φ`, the two-loop recursion over the last `m` pairs
 //! `sₖ = vₖ₊₁ − vₖ`, `yₖ = ∇Φ(vₖ₊₁) − ∇Φ(vₖ)` (Nocedal & Wright,
 //! *Numerical Optimization*, Algorithm 7.4) and three pairs of triangular
-//! solves with `H₀`'s factor; no 3×3-block matrix is assembled. A pair
+//! solves with `H₀`'s factor; no 3×3-block matrix is assembled, and the
+//! gradient comes from the line search's pass over the springs that
+//! evaluated `Φ` at the accepted point (`Assembler::evaluate`). A pair
 //! with `sᵀy ≤ 0` (where `Φ` is not convex along `s`: compressed springs,
 //! inverted volume elements) carries no curvature and is skipped, so the
 //! implied Hessian stays positive definite and every direction descends.
