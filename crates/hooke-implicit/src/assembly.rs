@@ -638,6 +638,80 @@ mod tests {
         (system, x)
     }
 
+    /// [`system`] at velocities `v` about `x̃` with `βh = 0.02`, and the
+    /// predictor's velocities `ṽ`.
+    struct Fixture {
+        system: System,
+        pattern: Pattern,
+        x_tilde: Vec<Vec3>,
+        v: Vec<Vec3>,
+        v_tilde: Vec<Vec3>,
+        beta_h: f64,
+    }
+
+    impl Fixture {
+        fn new() -> Self {
+            let (system, x_tilde) = system();
+            let n = system.particle_count();
+            Self {
+                pattern: Pattern::new(&system).unwrap(),
+                system,
+                x_tilde,
+                v: (0..n)
+                    .map(|i| Vec3::new(0.3 * i as f64, -0.2, 0.1 * (i as f64).sin()))
+                    .collect(),
+                v_tilde: (0..n)
+                    .map(|i| Vec3::new(0.1, 0.2 * i as f64, 0.0))
+                    .collect(),
+                beta_h: 0.02,
+            }
+        }
+
+        /// `x̃ + βh v`.
+        fn positions(&self, v: &[Vec3]) -> Vec<Vec3> {
+            let beta_h = self.beta_h;
+            self.x_tilde
+                .iter()
+                .zip(v)
+                .map(|(x, v)| x + beta_h * v)
+                .collect()
+        }
+
+        /// `Φ(v)` with the assembler's frozen directions.
+        fn phi(&self, assembler: &Assembler, v: &[Vec3]) -> f64 {
+            let x = self.positions(v);
+            assembler
+                .potential(
+                    &self.system,
+                    &self.pattern,
+                    &x,
+                    v,
+                    &self.v_tilde,
+                    self.beta_h,
+                )
+                .value
+        }
+    }
+
+    /// Asserts that `b` is minus the gradient of `phi` at `v` (central
+    /// differences).
+    fn assert_gradient(phi: impl Fn(&[Vec3]) -> f64, v: &[Vec3], b: &[Vec3]) {
+        let h = 1e-6;
+        for i in 0..v.len() {
+            for c in 0..3 {
+                let (mut plus, mut minus) = (v.to_vec(), v.to_vec());
+                plus[i][c] += h;
+                minus[i][c] -= h;
+                let numeric = (phi(&plus) - phi(&minus)) / (2.0 * h);
+                assert!(
+                    (numeric + b[i][c]).abs() < 1e-6 * (1.0 + numeric.abs()),
+                    "∂Φ/∂v[{i}][{c}] = {numeric}, −b = {}",
+                    -b[i][c]
+                );
+            }
+        }
+    }
+
     /// The quasi-Newton step's one pass ([`Assembler::evaluate`]) gives the
     /// value and rounding of [`Assembler::potential`] and minus the
     /// gradient of `Φ` in the velocities (central differences), with
@@ -645,52 +719,24 @@ mod tests {
     /// inverted), gravity and air damping.
     #[test]
     fn one_pass_gives_the_potential_and_its_gradient() {
-        let (system, x_tilde) = system();
-        let n = system.particle_count();
-        let beta_h = 0.02;
-        let pattern = Pattern::new(&system).unwrap();
-        let v: Vec<Vec3> = (0..n)
-            .map(|i| Vec3::new(0.3 * i as f64, -0.2, 0.1 * (i as f64).sin()))
-            .collect();
-        let v_tilde: Vec<Vec3> = (0..n)
-            .map(|i| Vec3::new(0.1, 0.2 * i as f64, 0.0))
-            .collect();
-        let positions = |v: &[Vec3]| -> Vec<Vec3> {
-            x_tilde.iter().zip(v).map(|(x, v)| x + beta_h * v).collect()
-        };
-        let x = positions(&v);
+        let f = Fixture::new();
+        let (system, pattern, beta_h) = (&f.system, &f.pattern, f.beta_h);
+        let (n, v, v_tilde) = (system.particle_count(), &f.v, &f.v_tilde);
+        let x = f.positions(v);
         let mut assembler = Assembler::default();
-        assembler.freeze_directions(&system, &pattern, &x_tilde);
+        assembler.freeze_directions(system, pattern, &f.x_tilde);
         let mut b = vec![Vec3::zeros(); n];
         let point = crate::residual::Point {
             x: &x,
-            v: &v,
-            v_tilde: &v_tilde,
+            v,
+            v_tilde,
             beta_h,
         };
-        let both = assembler.evaluate(&system, &pattern, point, &mut b);
-        let alone = assembler.potential(&system, &pattern, &x, &v, &v_tilde, beta_h);
+        let both = assembler.evaluate(system, pattern, point, &mut b);
+        let alone = assembler.potential(system, pattern, &x, v, v_tilde, beta_h);
         assert!((both.value - alone.value).abs() <= 1e-12 * alone.value.abs());
         assert!((both.rounding - alone.rounding).abs() <= 1e-12 * alone.rounding);
-        let phi = |v: &[Vec3]| {
-            assembler
-                .potential(&system, &pattern, &positions(v), v, &v_tilde, beta_h)
-                .value
-        };
-        let h = 1e-6;
-        for i in 0..n {
-            for c in 0..3 {
-                let (mut plus, mut minus) = (v.clone(), v.clone());
-                plus[i][c] += h;
-                minus[i][c] -= h;
-                let numeric = (phi(&plus) - phi(&minus)) / (2.0 * h);
-                assert!(
-                    (numeric + b[i][c]).abs() < 1e-6 * (1.0 + numeric.abs()),
-                    "∂Φ/∂v[{i}][{c}] = {numeric}, one pass −b = {}",
-                    -b[i][c]
-                );
-            }
-        }
+        assert_gradient(|v| f.phi(&assembler, v), v, &b);
     }
 
     /// The assembled right-hand side at a Newton iterate is minus the
@@ -702,20 +748,10 @@ mod tests {
     /// where the three differ).
     #[test]
     fn volume_terms_are_the_potentials_derivatives() {
-        let (system, x_tilde) = system();
-        let n = system.particle_count();
-        let beta_h = 0.02;
-        let pattern = Pattern::new(&system).unwrap();
-        let v: Vec<Vec3> = (0..n)
-            .map(|i| Vec3::new(0.3 * i as f64, -0.2, 0.1 * (i as f64).sin()))
-            .collect();
-        let v_tilde: Vec<Vec3> = (0..n)
-            .map(|i| Vec3::new(0.1, 0.2 * i as f64, 0.0))
-            .collect();
-        let positions = |v: &[Vec3]| -> Vec<Vec3> {
-            x_tilde.iter().zip(v).map(|(x, v)| x + beta_h * v).collect()
-        };
-        let x = positions(&v);
+        let f = Fixture::new();
+        let (system, pattern, beta_h) = (&f.system, &f.pattern, f.beta_h);
+        let (n, v, v_tilde) = (system.particle_count(), &f.v, &f.v_tilde);
+        let x = f.positions(v);
         let inertia: Vec<Vec3> = (0..n)
             .map(|i| -system.masses()[i] * (v[i] - v_tilde[i]))
             .collect();
@@ -725,7 +761,7 @@ mod tests {
         // The first linearisation freezes the damping directions at x.
         let lin = Linearization {
             positions: &x,
-            velocities: &v,
+            velocities: v,
             displacement: None,
             inertia: &inertia,
             beta_h,
@@ -733,27 +769,9 @@ mod tests {
             freeze_directions: true,
         };
         assembler
-            .assemble(&system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+            .assemble(system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
             .unwrap();
-        let phi = |v: &[Vec3]| {
-            assembler
-                .potential(&system, &pattern, &positions(v), v, &v_tilde, beta_h)
-                .value
-        };
-        let h = 1e-6;
-        for i in 0..n {
-            for c in 0..3 {
-                let (mut plus, mut minus) = (v.clone(), v.clone());
-                plus[i][c] += h;
-                minus[i][c] -= h;
-                let numeric = (phi(&plus) - phi(&minus)) / (2.0 * h);
-                assert!(
-                    (numeric + b[i][c]).abs() < 1e-6 * (1.0 + numeric.abs()),
-                    "∂Φ/∂v[{i}][{c}] = {numeric}, assembled −b = {}",
-                    -b[i][c]
-                );
-            }
-        }
+        assert_gradient(|v| f.phi(&assembler, v), v, &b);
         let w: Vec<Vec3> = (0..n)
             .map(|i| Vec3::new(1.0, -0.5 * i as f64, 0.25 + i as f64))
             .collect();
@@ -769,7 +787,7 @@ mod tests {
         ] {
             let lin = Linearization {
                 positions: &x,
-                velocities: &v,
+                velocities: v,
                 displacement,
                 inertia: &inertia,
                 beta_h,
@@ -777,7 +795,7 @@ mod tests {
                 freeze_directions: false,
             };
             assembler
-                .assemble(&system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+                .assemble(system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
                 .unwrap();
             let mut with = vec![Vec3::zeros(); n];
             a.apply(&w, &mut with);
