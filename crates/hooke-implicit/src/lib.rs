@@ -118,40 +118,20 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-pub mod amg;
-mod assembly;
-mod attempt;
-mod block;
-pub mod cg;
-mod cholesky;
-mod conditioning;
-mod contact;
-mod energy;
-pub mod error_control;
-mod fast_mass_spring;
-mod filter;
-mod implicit;
-mod laplacian;
-mod matrix;
-mod newton;
-mod pattern;
-mod pins;
-mod quasi_newton;
-mod residual;
-mod solver;
+mod linear;
+mod minimize;
 mod step;
-mod vector;
 
-pub use amg::{Amg, AmgSettings};
-pub use assembly::{Assembler, Linearization, PARALLEL_MIN_ELEMENTS};
-pub use block::SymBlock;
-pub use cg::{BlockJacobi, PcgSettings};
-pub use cholesky::{FactorPreconditioner, SparseCholesky};
-pub use error_control::ErrorControl;
-pub use fast_mass_spring::FastMassSpring;
-pub use filter::Filter;
-pub use implicit::{Implicit, Minimizer, Scheme};
-pub use matrix::BlockMatrix;
-pub use pattern::Pattern;
-pub use solver::{AmgRenewal, LinearSolver};
-pub use vector::PARALLEL_MIN_PARTICLES;
+pub use linear::amg::{self, Amg, AmgSettings};
+pub use linear::block::SymBlock;
+pub use linear::cg::{self, BlockJacobi, PcgSettings};
+pub use linear::cholesky::{FactorPreconditioner, SparseCholesky};
+pub use linear::filter::Filter;
+pub use linear::matrix::BlockMatrix;
+pub use linear::pattern::Pattern;
+pub use linear::solver::{AmgRenewal, LinearSolver};
+pub use linear::vector::PARALLEL_MIN_PARTICLES;
+pub use minimize::assembly::{Assembler, Linearization, PARALLEL_MIN_ELEMENTS};
+pub use minimize::fast_mass_spring::FastMassSpring;
+pub use step::error_control::{self, ErrorControl};
+pub use step::implicit::{Implicit, Minimizer, Scheme};

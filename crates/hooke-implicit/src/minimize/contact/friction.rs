@@ -29,8 +29,8 @@
 use hooke_core::{Mat3, Vec3};
 use nalgebra::{Matrix2, Vector2};
 
-use crate::block::SymBlock;
-use crate::matrix::BlockMatrix;
+use crate::linear::block::SymBlock;
+use crate::linear::matrix::BlockMatrix;
 
 /// `f₀(s)`: the dissipation potential per unit bound.
 fn f0(s: f64, eps: f64) -> f64 {

@@ -5,13 +5,13 @@
 
 use hooke_core::{CompressedSprings, State, StepError, StepReport, System, Vec3};
 
-use crate::assembly::Linearization;
-use crate::contact::Contact;
-use crate::energy::{absorption, energy, pin_work, rounding};
-use crate::implicit::{Implicit, Minimizer, Scheme, Work};
-use crate::newton::{self, Iterates, Newton, velocity_scale};
-use crate::solver::{Solve, topology};
-use crate::vector::for_each_row;
+use crate::minimize::assembly::Linearization;
+use crate::minimize::contact::Contact;
+use crate::step::energy::{absorption, energy, pin_work, rounding};
+use crate::step::implicit::{Implicit, Minimizer, Scheme, Work};
+use crate::minimize::newton::{self, Iterates, Newton, velocity_scale};
+use crate::linear::solver::{Solve, topology};
+use crate::linear::vector::for_each_row;
 
 /// What became of an attempt; `error` is the estimated local error and the
 /// order of the estimate, where error control is on and the history allows

@@ -25,8 +25,8 @@ use hooke_core::collision::distance::{
 use hooke_core::{Mat3, System, Vec3};
 
 use super::friction::Lagged;
-use crate::block::SymBlock;
-use crate::matrix::BlockMatrix;
+use crate::linear::block::SymBlock;
+use crate::linear::matrix::BlockMatrix;
 
 /// How far beyond the contact distance `d̂` (plus thickness) a proximity
 /// search reaches, in units of `d̂`: its candidates stay valid, at any

@@ -3,11 +3,11 @@
 
 use hooke_core::{ParameterError, Vec3};
 
-use crate::block::SymBlock;
+use crate::linear::block::SymBlock;
 
-use crate::filter::{Filter, project};
-use crate::matrix::BlockMatrix;
-use crate::vector::{dot, for_each_row};
+use crate::linear::filter::{Filter, project};
+use crate::linear::matrix::BlockMatrix;
+use crate::linear::vector::{dot, for_each_row};
 
 /// A symmetric positive-definite linear operator on per-particle 3-vectors.
 pub trait Operator {
@@ -194,7 +194,7 @@ pub fn solve(
         buffer.resize(n, Vec3::zeros());
     }
     project(filters, x);
-    let b_norm = crate::vector::sum(n, |i| filters[i].apply(b[i]).norm_squared()).sqrt();
+    let b_norm = crate::linear::vector::sum(n, |i| filters[i].apply(b[i]).norm_squared()).sqrt();
     let rounding = 8.0 * f64::EPSILON * dot(b, b).sqrt();
     if b_norm == 0.0 {
         x.fill(Vec3::zeros());

@@ -5,11 +5,11 @@ use std::time::Instant;
 
 use hooke_core::{Integrator, State, StepError, StepReport, System, Vec3, check_step};
 
-use crate::attempt::Outcome;
-use crate::contact::Contact;
-use crate::error_control::step_factor;
-use crate::implicit::{Implicit, Scheme};
-use crate::solver::topology;
+use crate::step::attempt::Outcome;
+use crate::minimize::contact::Contact;
+use crate::step::error_control::step_factor;
+use crate::step::implicit::{Implicit, Scheme};
+use crate::linear::solver::topology;
 
 impl Integrator for Implicit {
     fn step(

@@ -4,10 +4,10 @@ use std::ops::Range;
 
 use hooke_core::{Mat3, Vec3};
 
-use crate::block::SymBlock;
-use crate::pattern::Pattern;
+use crate::linear::block::SymBlock;
+use crate::linear::pattern::Pattern;
 #[cfg(feature = "parallel")]
-use crate::vector::{MIN_CHUNK, PARALLEL_MIN_PARTICLES};
+use crate::linear::vector::{MIN_CHUNK, PARALLEL_MIN_PARTICLES};
 
 /// A symmetric `3n × 3n` matrix with the sparsity of a spring system:
 ///

@@ -36,11 +36,11 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use hooke_core::{CompressedSprings, Mat3, StepError, System, TET_PAIRS, Tet, TetHessian, Vec3};
 
-use crate::block::SymBlock;
-use crate::cg::BlockJacobi;
-use crate::matrix::BlockMatrix;
-use crate::pattern::Pattern;
-use crate::vector::{for_each_row, for_each_row3, spring_chunks, sum2};
+use crate::linear::block::SymBlock;
+use crate::linear::cg::BlockJacobi;
+use crate::linear::matrix::BlockMatrix;
+use crate::linear::pattern::Pattern;
+use crate::linear::vector::{for_each_row, for_each_row3, spring_chunks, sum2};
 
 /// The incremental potential at a point and its rounding level.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -557,8 +557,8 @@ pub(crate) fn volume_energy(system: &System, x: &[Vec3]) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cholesky::SparseCholesky;
-    use crate::filter::Filter;
+    use crate::linear::cholesky::SparseCholesky;
+    use crate::linear::filter::Filter;
     use hooke_core::SystemBuilder;
 
     /// Two tetrahedra sharing a face, of moduli `moduli`, on five

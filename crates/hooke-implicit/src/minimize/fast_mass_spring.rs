@@ -6,7 +6,7 @@ use hooke_core::{
     Integrator, ParameterError, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
-use crate::laplacian::Laplacian;
+use crate::minimize::laplacian::Laplacian;
 
 /// Backward Euler for springs as Liu et al. (2013) solve it.
 ///

@@ -13,11 +13,11 @@ use hooke_core::{Mat3, StepError, Vec3};
 
 use std::cell::RefCell;
 
-use crate::amg::fine::Neighbours;
-use crate::cg::Preconditioner;
-use crate::filter::Filter;
-use crate::matrix::BlockMatrix;
-use crate::pattern::Pattern;
+use crate::linear::amg::fine::Neighbours;
+use crate::linear::cg::Preconditioner;
+use crate::linear::filter::Filter;
+use crate::linear::matrix::BlockMatrix;
+use crate::linear::pattern::Pattern;
 
 /// A direct solver for the filtered system
 ///

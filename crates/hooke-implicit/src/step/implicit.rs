@@ -2,13 +2,13 @@
 
 use hooke_core::{CompressedSprings, History, Integrator, ParameterError, Vec3};
 
-use crate::assembly::Assembler;
-use crate::cg::PcgWorkspace;
-use crate::contact::Contact;
-use crate::error_control::ErrorControl;
-use crate::pins::Pins;
-use crate::quasi_newton::QuasiNewton;
-use crate::solver::{AmgRenewal, LinearSolver, Topology};
+use crate::minimize::assembly::Assembler;
+use crate::linear::cg::PcgWorkspace;
+use crate::minimize::contact::Contact;
+use crate::step::error_control::ErrorControl;
+use crate::step::pins::Pins;
+use crate::minimize::quasi_newton::QuasiNewton;
+use crate::linear::solver::{AmgRenewal, LinearSolver, Topology};
 
 /// The time discretisation. Both are implicit, A-stable and L-stable: stiff
 /// modes are damped, never amplified, at any step size.
@@ -170,7 +170,7 @@ impl Minimizer {
 /// with the excess in `energy_excess`. Nothing is silent.
 ///
 /// With [`Implicit::with_error_control`] the substeps are chosen by their
-/// estimated local error instead (see the [`error_control`](crate::error_control)
+/// estimated local error instead (see the [`error_control`](crate::step::error_control)
 /// module); rejection for convergence and energy works as above.
 ///
 /// # The quasi-Newton step
@@ -502,7 +502,7 @@ impl Implicit {
     }
 
     /// Chooses the substeps by their estimated local error (see
-    /// [`ErrorControl`] and the [`error_control`](crate::error_control)
+    /// [`ErrorControl`] and the [`error_control`](crate::step::error_control)
     /// module): each step the caller asks for is delivered whole, in as
     /// many substeps as the tolerances need.
     ///

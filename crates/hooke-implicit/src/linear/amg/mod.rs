@@ -82,10 +82,10 @@ use self::csr::Csr;
 use self::fine::Neighbours;
 use self::prolongation::{MODES, smooth, tentative};
 use self::smoother::{BlockInverse, Chebyshev, Sweep, largest_eigenvalue};
-use crate::cg::Preconditioner;
-use crate::filter::Filter;
-use crate::matrix::BlockMatrix;
-use crate::vector::{PARALLEL_MIN_PARTICLES, for_each_row};
+use crate::linear::cg::Preconditioner;
+use crate::linear::filter::Filter;
+use crate::linear::matrix::BlockMatrix;
+use crate::linear::vector::{PARALLEL_MIN_PARTICLES, for_each_row};
 
 /// Parameters of the multigrid hierarchy and cycle.
 #[derive(Debug, Clone, Copy, PartialEq)]

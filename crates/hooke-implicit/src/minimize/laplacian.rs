@@ -5,9 +5,9 @@
 
 use hooke_core::{Spring, StepError, System, Vec3};
 
-use crate::amg::coarse::ScalarCholesky;
-use crate::amg::csr::Csr;
-use crate::vector::for_each_row;
+use crate::linear::amg::coarse::ScalarCholesky;
+use crate::linear::amg::csr::Csr;
+use crate::linear::vector::for_each_row;
 
 /// `(M + a Γ + Σₛ wₛ (eᵢ − eⱼ)(eᵢ − eⱼ)ᵀ)_ff` for one system: `M` the
 /// masses, `Γ = γ I` the air damping, `wₛ` a weight per spring, `f` the

@@ -5,14 +5,14 @@ use std::time::{Duration, Instant};
 
 use hooke_core::{StepError, StepReport, System, Vec3};
 
-use crate::amg::{Amg, AmgError, AmgSettings};
-use crate::assembly::{Assembler, Linearization};
-use crate::cg::{self, BlockJacobi, PcgError, PcgInfo, PcgSettings, PcgWorkspace};
-use crate::cholesky::{SparseCholesky, predicted_factor_entries};
-use crate::conditioning::Rates;
-use crate::filter::Filter;
-use crate::matrix::BlockMatrix;
-use crate::pattern::Pattern;
+use crate::linear::amg::{Amg, AmgError, AmgSettings};
+use crate::minimize::assembly::{Assembler, Linearization};
+use crate::linear::cg::{self, BlockJacobi, PcgError, PcgInfo, PcgSettings, PcgWorkspace};
+use crate::linear::cholesky::{SparseCholesky, predicted_factor_entries};
+use crate::step::conditioning::Rates;
+use crate::linear::filter::Filter;
+use crate::linear::matrix::BlockMatrix;
+use crate::linear::pattern::Pattern;
 
 /// How the linear system of each Newton step is solved.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -8,7 +8,7 @@
 
 use hooke_core::{System, Vec3};
 
-use crate::matrix::BlockMatrix;
+use crate::linear::matrix::BlockMatrix;
 
 /// The prescribed velocity changes of a step's scripted pins.
 #[derive(Debug, Clone, Default)]

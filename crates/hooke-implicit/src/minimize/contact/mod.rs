@@ -53,7 +53,7 @@ mod pairs;
 
 use hooke_core::{State, System, Vec3, collision::barrier::barrier};
 
-use crate::matrix::BlockMatrix;
+use crate::linear::matrix::BlockMatrix;
 use friction::Lagged;
 use obstacles::{Obstacles, lag_friction};
 use pairs::Pairs;
@@ -342,7 +342,7 @@ impl Contact {
             b[i] -= kb * slope * n;
             a.add_extra_row(
                 i,
-                crate::block::SymBlock::rank_one_plus_identity(kbb * curvature, n, 0.0),
+                crate::linear::block::SymBlock::rank_one_plus_identity(kbb * curvature, n, 0.0),
             );
         });
         for f in &self.friction {

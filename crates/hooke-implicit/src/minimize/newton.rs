@@ -4,12 +4,12 @@
 
 use hooke_core::{CompressedSprings, StepError, StepReport, System, Vec3};
 
-use crate::assembly::{Assembler, Linearization, Potential};
-use crate::contact::Contact;
-use crate::quasi_newton::QuasiNewton;
-use crate::residual::Point;
-use crate::solver::{Solve, Topology};
-use crate::vector::{dot, for_each_row, for_each_row2};
+use crate::minimize::assembly::{Assembler, Linearization, Potential};
+use crate::minimize::contact::Contact;
+use crate::minimize::quasi_newton::QuasiNewton;
+use crate::minimize::residual::Point;
+use crate::linear::solver::{Solve, Topology};
+use crate::linear::vector::{dot, for_each_row, for_each_row2};
 
 /// The sufficient-decrease constant `c` of the Armijo condition
 /// `Φ(v + αδ) ≤ Φ(v) + c α ∇Φ·δ`.
@@ -80,7 +80,7 @@ pub(crate) struct Newton<'a> {
     pub(crate) b: &'a mut [Vec3],
     /// Scratch for the motion `βh α δ` that collision detection checks.
     pub(crate) motion: &'a mut [Vec3],
-    pub(crate) pcg: &'a mut crate::cg::PcgWorkspace,
+    pub(crate) pcg: &'a mut crate::linear::cg::PcgWorkspace,
     pub(crate) report: &'a mut StepReport,
     /// Whether iterative solves stop at the forcing term ([`forcing`]).
     pub(crate) inexact: bool,

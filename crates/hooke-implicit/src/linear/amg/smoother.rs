@@ -3,7 +3,7 @@
 //! the aggregates of the coarse levels).
 
 use super::bsr::{Block, for_each_block, zero};
-use crate::vector::PARALLEL_MIN_PARTICLES;
+use crate::linear::vector::PARALLEL_MIN_PARTICLES;
 
 /// The inverses of the diagonal `N × N` blocks `A_II` of a level, one per
 /// node.

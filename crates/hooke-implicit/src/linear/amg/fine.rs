@@ -6,10 +6,10 @@ use hooke_core::{Mat3, Vec3};
 use super::aggregation::Graph;
 use super::bsr::{Block, Bsr, for_each_block, for_each_row_slice, zero};
 use super::prolongation::MODES;
-use crate::filter::Filter;
-use crate::matrix::BlockMatrix;
-use crate::pattern::Pattern;
-use crate::vector::{PARALLEL_MIN_PARTICLES, for_each_row};
+use crate::linear::filter::Filter;
+use crate::linear::matrix::BlockMatrix;
+use crate::linear::pattern::Pattern;
+use crate::linear::vector::{PARALLEL_MIN_PARTICLES, for_each_row};
 
 /// Each particle's neighbours through a spring, in increasing order, with
 /// the spring's slot: the block rows of `A` without the diagonal.
