@@ -10,3 +10,4 @@ pub(crate) mod laplacian;
 pub(crate) mod newton;
 pub(crate) mod quasi_newton;
 pub(crate) mod residual;
+pub(crate) mod volume;

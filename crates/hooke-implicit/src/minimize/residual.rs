@@ -3,9 +3,9 @@
 
 use hooke_core::{StepError, System, Vec3};
 
-use crate::minimize::assembly::Assembler;
 use crate::linear::pattern::Pattern;
 use crate::linear::vector::for_each_row;
+use crate::minimize::assembly::Assembler;
 
 /// Where to evaluate the residual: positions `x = x̃ + βh v`, velocities
 /// `v` and the inertia term `M(ṽ − v)`.

@@ -5,13 +5,16 @@
 
 use hooke_core::{CompressedSprings, State, StepError, StepReport, System, Vec3};
 
+use crate::linear::solver::solve::Solve;
+use crate::linear::solver::topology::topology;
+use crate::linear::vector::for_each_row;
 use crate::minimize::assembly::Linearization;
 use crate::minimize::contact::Contact;
-use crate::step::energy::{absorption, energy, pin_work, rounding};
-use crate::step::implicit::{Implicit, Minimizer, Scheme, Work};
 use crate::minimize::newton::{self, Iterates, Newton, velocity_scale};
-use crate::linear::solver::{Solve, topology};
-use crate::linear::vector::for_each_row;
+use crate::step::energy::{absorption, energy, pin_work, rounding};
+use crate::step::implicit::Implicit;
+use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::work::Work;
 
 /// What became of an attempt; `error` is the estimated local error and the
 /// order of the estimate, where error control is on and the history allows
@@ -88,7 +91,7 @@ impl Implicit {
         let previous = self.history.take(system, state);
         let time = state.time();
         let (x0, v0) = (state.positions(), state.velocities());
-        let c = Coefficients::new(self.scheme, h, previous);
+        let c = Coefficients::new(self.settings.scheme, h, previous);
         let beta_h = c.beta * h;
         let masses = system.masses();
         let Work {
@@ -120,8 +123,8 @@ impl Implicit {
             dv.fill(Vec3::zeros());
         }
 
-        let (compressed, strict) = (self.compressed, self.strict);
-        let quasi = match self.minimizer {
+        let (compressed, strict) = (self.settings.compressed, self.settings.strict);
+        let quasi = match self.settings.minimizer {
             Minimizer::QuasiNewton { history } => {
                 let contact = Contact::present(system);
                 self.quasi.begin(system, (beta_h, contact), history, time)?;
@@ -129,7 +132,12 @@ impl Implicit {
             }
             _ => None,
         };
-        let topology = topology(&mut self.topology, solver, self.amg_renewal, system)?;
+        let topology = topology(
+            &mut self.topology,
+            solver,
+            self.settings.amg_renewal,
+            system,
+        )?;
         let solve = Solve {
             system,
             strict,
@@ -212,7 +220,7 @@ impl Implicit {
             motion: u,
             pcg,
             report,
-            inexact: self.inexact_newton,
+            inexact: self.settings.inexact_newton,
             hessian: CompressedSprings::Exact,
             quasi,
         };
@@ -248,7 +256,10 @@ impl Implicit {
             let (iterations, tolerance) = if linearized {
                 (lin_steps, f64::INFINITY)
             } else {
-                (self.newton_iterations, self.newton_tolerance)
+                (
+                    self.settings.newton_iterations,
+                    self.settings.newton_tolerance,
+                )
             };
             let mut outcome = newton.minimize(&mut iterates, v0, start, iterations, tolerance)?;
             if linearized {
@@ -279,14 +290,14 @@ impl Implicit {
             let scale = velocity_scale(system, v.iter().copied(), v0, beta_h);
             (
                 factor,
-                outcome.converged && shift <= self.newton_tolerance * scale,
+                outcome.converged && shift <= self.settings.newton_tolerance * scale,
             )
         } else {
             (1.0, false)
         };
         report.newton_iterations += outcome.iterations;
         report.newton_iterations_max = report.newton_iterations_max.max(outcome.iterations);
-        let error = self.error_control.and_then(|control| {
+        let error = self.settings.error_control.and_then(|control| {
             let order = if two_step { 2 } else { 1 };
             let earlier = self.earlier.unwrap_or(f64::NAN);
             let past = [(&x_prev[..], previous?), (&x_earlier[..], earlier)];
@@ -347,7 +358,7 @@ impl Implicit {
         // crosses one).
         report.contacts = touching + system.end_step(state);
         Ok(Outcome::Accepted {
-            easy: 3 * outcome.iterations <= self.newton_iterations,
+            easy: 3 * outcome.iterations <= self.settings.newton_iterations,
             error,
         })
     }

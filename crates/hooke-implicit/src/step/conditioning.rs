@@ -23,6 +23,29 @@
 
 use hooke_core::System;
 
+/// The longest substep of the last system stepped, kept until the system
+/// changes.
+#[derive(Debug, Default, Clone, Copy, PartialEq)]
+pub(crate) struct LongestStep {
+    /// The system's id and its longest step.
+    cached: Option<(u64, f64)>,
+}
+
+impl LongestStep {
+    /// The longest step of `system` at which `κ(h)` reaches `condition`
+    /// (see [`Rates::longest_step`]).
+    pub(crate) fn get(&mut self, system: &System, condition: f64) -> f64 {
+        match self.cached {
+            Some((id, longest)) if id == system.id() => longest,
+            _ => {
+                let longest = Rates::new(system).longest_step(condition);
+                self.cached = Some((system.id(), longest));
+                longest
+            }
+        }
+    }
+}
+
 /// The bounds `ω²` (1/s²) and `ζ` (1/s) of `system`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Rates {

@@ -72,7 +72,7 @@ pub(crate) fn energy(system: &System, x: &[Vec3], v: &[Vec3]) -> (f64, f64) {
         value += e;
         magnitude += e;
     }
-    let volume = crate::minimize::assembly::volume_energy(system, x).0;
+    let volume = crate::minimize::volume::volume_energy(system, x).0;
     (value + volume, magnitude + volume)
 }
 

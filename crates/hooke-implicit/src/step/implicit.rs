@@ -1,83 +1,18 @@
 //! [`Implicit`]: backward Euler and BDF2 on the assembled system.
 
-use hooke_core::{CompressedSprings, History, Integrator, ParameterError, Vec3};
+use hooke_core::{CompressedSprings, History, Integrator, ParameterError};
 
+use crate::linear::solver::topology::Topology;
+use crate::linear::solver::{AmgRenewal, LinearSolver};
 use crate::minimize::assembly::Assembler;
-use crate::linear::cg::PcgWorkspace;
 use crate::minimize::contact::Contact;
+use crate::minimize::quasi_newton::QuasiNewton;
+use crate::step::comparison::Comparison;
+use crate::step::conditioning::LongestStep;
 use crate::step::error_control::ErrorControl;
 use crate::step::pins::Pins;
-use crate::minimize::quasi_newton::QuasiNewton;
-use crate::linear::solver::{AmgRenewal, LinearSolver, Topology};
-
-/// The time discretisation. Both are implicit, A-stable and L-stable: stiff
-/// modes are damped, never amplified, at any step size.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Scheme {
-    /// Backward Euler, first order:
-    /// `xₙ₊₁ = xₙ + h vₙ₊₁`, `vₙ₊₁ = vₙ + h M⁻¹ f(xₙ₊₁, vₙ₊₁)`.
-    /// On the undamped oscillator one step multiplies the amplitude by
-    /// `1/√(1 + (hω)²)`.
-    BackwardEuler,
-    /// The second-order backward differentiation formula:
-    /// `xₙ₊₁ = (4xₙ − xₙ₋₁)/3 + (2/3)h vₙ₊₁`,
-    /// `vₙ₊₁ = (4vₙ − vₙ₋₁)/3 + (2/3)h M⁻¹ f(xₙ₊₁, vₙ₊₁)`.
-    /// Second order; it starts (and restarts, whenever the state, the system
-    /// or `h` changes) with one backward-Euler step. Its amplitude error per
-    /// step on the undamped oscillator is `O((hω)⁴)` (Choi & Ko, *Stable but
-    /// Responsive Cloth*, SIGGRAPH 2002; Hairer & Wanner, *Solving Ordinary
-    /// Differential Equations II*, §V.1).
-    Bdf2,
-}
-
-/// How a step minimises its incremental potential `Φ` (see [`Implicit`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Minimizer {
-    /// Newton's method on the assembled 3×3-block system, the exact spring
-    /// Hessian where it is positive definite (the default).
-    #[default]
-    Newton,
-    /// L-BFGS with the last `history` curvature pairs and the constant,
-    /// prefactored initial Hessian `H₀ = M + βh (γI + C₀) + β²h² L` (the
-    /// springs' stiffness and damping Laplacians; Liu, Bouaziz & Kavan
-    /// 2017): an iteration costs one gradient and three pairs of triangular
-    /// solves, no matrix is assembled. The same line search, stopping rule,
-    /// energy test and substeps as Newton's method; it converges linearly
-    /// where Newton converges quadratically, so it wins at loose
-    /// tolerances and on large meshes. The `quasi_newton` module gives the
-    /// equations.
-    QuasiNewton {
-        /// The curvature pairs kept.
-        history: usize,
-    },
-    /// Baraff & Witkin's linearised step: one linear solve, no line
-    /// search, no rejection.
-    Linearized,
-}
-
-impl Minimizer {
-    /// The default L-BFGS history (Liu et al.'s).
-    pub const HISTORY: usize = 5;
-
-    /// L-BFGS with the default history.
-    #[must_use]
-    pub fn quasi_newton() -> Self {
-        Self::QuasiNewton {
-            history: Self::HISTORY,
-        }
-    }
-
-    /// The name scene files and reports use: `"newton"`, `"quasi-newton"`
-    /// or `"linearized"`.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Newton => "newton",
-            Self::QuasiNewton { .. } => "quasi-newton",
-            Self::Linearized => "linearized",
-        }
-    }
-}
+use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::work::Work;
 
 /// An implicit integrator on the assembled mass-spring system.
 ///
@@ -224,6 +159,31 @@ impl Minimizer {
 /// ```
 #[derive(Debug)]
 pub struct Implicit {
+    pub(crate) settings: Settings,
+    /// The steps before, for BDF2 and the error estimates.
+    pub(crate) history: History,
+    /// The substep size to try first: the last accepted one, doubled.
+    pub(crate) substep: f64,
+    /// The size of the step before the last one, when the last one
+    /// continued from it (for BDF2's error estimate).
+    pub(crate) earlier: Option<f64>,
+    pub(crate) topology: Option<Topology>,
+    /// [`LinearSolver::Auto`]'s comparison on whole steps, while it lasts.
+    pub(crate) comparison: Comparison,
+    /// The longest substep the conditioning allows.
+    pub(crate) longest: LongestStep,
+    pub(crate) assembler: Assembler,
+    pub(crate) pins: Pins,
+    pub(crate) contact: Contact,
+    pub(crate) quasi: QuasiNewton,
+    pub(crate) work: Work,
+}
+
+/// What [`Implicit`]'s builders set: the scheme, the minimiser and its
+/// stopping rule, the linear solver, the substeps' limits and the error
+/// control. Everything else in [`Implicit`] is run-time state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Settings {
     pub(crate) scheme: Scheme,
     pub(crate) solver: LinearSolver,
     pub(crate) minimizer: Minimizer,
@@ -234,47 +194,7 @@ pub struct Implicit {
     pub(crate) max_halvings: u32,
     pub(crate) strict: bool,
     pub(crate) compressed: CompressedSprings,
-    pub(crate) history: History,
-    /// The substep size to try first: the last accepted one, doubled.
-    pub(crate) substep: f64,
     pub(crate) error_control: Option<ErrorControl>,
-    /// The size of the step before the last one, when the last one
-    /// continued from it (for BDF2's error estimate).
-    pub(crate) earlier: Option<f64>,
-    pub(crate) topology: Option<Topology>,
-    pub(crate) assembler: Assembler,
-    pub(crate) pins: Pins,
-    pub(crate) contact: Contact,
-    pub(crate) quasi: QuasiNewton,
-    pub(crate) work: Work,
-}
-
-/// Per-particle buffers, kept so that a step does not allocate.
-#[derive(Debug, Default)]
-pub(crate) struct Work {
-    pub(crate) b: Vec<Vec3>,
-    /// The linearised step's `Δv`, kept as the next step's warm start.
-    pub(crate) dv: Vec<Vec3>,
-    /// A Newton correction.
-    pub(crate) delta: Vec<Vec3>,
-    pub(crate) v: Vec<Vec3>,
-    pub(crate) x: Vec<Vec3>,
-    pub(crate) trial: Vec<Vec3>,
-    /// The watchdog's look-ahead step and the point it reaches.
-    pub(crate) ahead: Vec<Vec3>,
-    pub(crate) look: Vec<Vec3>,
-    pub(crate) x_tilde: Vec<Vec3>,
-    pub(crate) v_tilde: Vec<Vec3>,
-    pub(crate) u: Vec<Vec3>,
-    pub(crate) inertia: Vec<Vec3>,
-    /// BDF2's `xₙ₋₁`, `vₙ₋₁`, and `xₙ₋₂` for the error estimates.
-    pub(crate) x_prev: Vec<Vec3>,
-    pub(crate) v_prev: Vec<Vec3>,
-    pub(crate) x_earlier: Vec<Vec3>,
-    /// The state at the start of the caller's step, restored on an error.
-    pub(crate) x_start: Vec<Vec3>,
-    pub(crate) v_start: Vec<Vec3>,
-    pub(crate) pcg: PcgWorkspace,
 }
 
 impl Implicit {
@@ -324,21 +244,25 @@ impl Implicit {
     #[must_use]
     pub fn new(scheme: Scheme) -> Self {
         Self {
-            scheme,
-            solver: LinearSolver::default(),
-            minimizer: Minimizer::Newton,
-            newton_iterations: Self::NEWTON_ITERATIONS,
-            newton_tolerance: Self::NEWTON_TOLERANCE,
-            inexact_newton: true,
-            amg_renewal: AmgRenewal::default(),
-            max_halvings: Self::MAX_HALVINGS,
-            strict: false,
-            compressed: CompressedSprings::Clamped,
+            settings: Settings {
+                scheme,
+                solver: LinearSolver::default(),
+                minimizer: Minimizer::Newton,
+                newton_iterations: Self::NEWTON_ITERATIONS,
+                newton_tolerance: Self::NEWTON_TOLERANCE,
+                inexact_newton: true,
+                amg_renewal: AmgRenewal::default(),
+                max_halvings: Self::MAX_HALVINGS,
+                strict: false,
+                compressed: CompressedSprings::Clamped,
+                error_control: None,
+            },
             history: History::default(),
             substep: f64::INFINITY,
-            error_control: None,
             earlier: None,
             topology: None,
+            comparison: Comparison::default(),
+            longest: LongestStep::default(),
             assembler: Assembler::default(),
             pins: Pins::default(),
             contact: Contact::default(),
@@ -355,8 +279,9 @@ impl Implicit {
     /// ```
     #[must_use]
     pub fn with_solver(mut self, solver: LinearSolver) -> Self {
-        self.solver = solver;
+        self.settings.solver = solver;
         self.topology = None;
+        self.comparison = Comparison::default();
         self
     }
 
@@ -373,7 +298,7 @@ impl Implicit {
     /// ```
     #[must_use]
     pub fn with_inexact_newton(mut self, inexact: bool) -> Self {
-        self.inexact_newton = inexact;
+        self.settings.inexact_newton = inexact;
         self
     }
 
@@ -386,8 +311,9 @@ impl Implicit {
     /// ```
     #[must_use]
     pub fn with_amg_renewal(mut self, renewal: AmgRenewal) -> Self {
-        self.amg_renewal = renewal;
+        self.settings.amg_renewal = renewal;
         self.topology = None;
+        self.comparison = Comparison::default();
         self
     }
 
@@ -425,8 +351,8 @@ impl Implicit {
                 "positive and finite",
             ));
         }
-        self.newton_iterations = max_iterations;
-        self.newton_tolerance = tolerance;
+        self.settings.newton_iterations = max_iterations;
+        self.settings.newton_tolerance = tolerance;
         Ok(self)
     }
 
@@ -445,7 +371,7 @@ impl Implicit {
     /// Whether the step is the linearised one.
     #[must_use]
     pub fn is_linearized(&self) -> bool {
-        self.minimizer == Minimizer::Linearized
+        self.settings.minimizer == Minimizer::Linearized
     }
 
     /// Minimises each step's `Φ` with `minimizer` (default
@@ -458,15 +384,16 @@ impl Implicit {
     /// ```
     #[must_use]
     pub fn with_minimizer(mut self, minimizer: Minimizer) -> Self {
-        self.minimizer = minimizer;
+        self.settings.minimizer = minimizer;
         self.topology = None;
+        self.comparison = Comparison::default();
         self
     }
 
     /// How each step's `Φ` is minimised.
     #[must_use]
     pub fn minimizer(&self) -> Minimizer {
-        self.minimizer
+        self.settings.minimizer
     }
 
     /// Lets a rejected step be cut in half at most `halvings` times (the
@@ -477,7 +404,7 @@ impl Implicit {
     /// ```
     #[must_use]
     pub fn with_max_halvings(mut self, halvings: u32) -> Self {
-        self.max_halvings = halvings;
+        self.settings.max_halvings = halvings;
         self
     }
 
@@ -489,7 +416,7 @@ impl Implicit {
     /// [`StepReport::unconverged_steps`](hooke_core::StepReport::unconverged_steps).
     #[must_use]
     pub fn strict(mut self, strict: bool) -> Self {
-        self.strict = strict;
+        self.settings.strict = strict;
         self
     }
 
@@ -497,7 +424,7 @@ impl Implicit {
     /// default, which keeps the matrix positive definite).
     #[must_use]
     pub fn with_compressed_springs(mut self, compressed: CompressedSprings) -> Self {
-        self.compressed = compressed;
+        self.settings.compressed = compressed;
         self
     }
 
@@ -513,14 +440,14 @@ impl Implicit {
     /// ```
     #[must_use]
     pub fn with_error_control(mut self, control: ErrorControl) -> Self {
-        self.error_control = Some(control);
+        self.settings.error_control = Some(control);
         self
     }
 
     /// The scheme.
     #[must_use]
     pub fn scheme(&self) -> Scheme {
-        self.scheme
+        self.settings.scheme
     }
 
     /// The linear solver whose topology a step uses: the quasi-Newton step
@@ -528,9 +455,9 @@ impl Implicit {
     /// conditioning bounds only, so it asks for the one that builds no
     /// factor or hierarchy.
     pub(crate) fn solver_for_topology(&self) -> LinearSolver {
-        match self.minimizer {
+        match self.settings.minimizer {
             Minimizer::QuasiNewton { .. } => LinearSolver::Pcg(crate::PcgSettings::default()),
-            _ => self.solver,
+            _ => self.settings.solver,
         }
     }
 }

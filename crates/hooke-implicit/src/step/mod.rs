@@ -3,9 +3,12 @@
 //! back, the energy test, local error control and the conditioning limit.
 
 pub(crate) mod attempt;
+pub(crate) mod comparison;
 pub(crate) mod conditioning;
 pub(crate) mod energy;
 pub mod error_control;
 pub(crate) mod implicit;
 pub(crate) mod pins;
+pub(crate) mod scheme;
 pub(crate) mod substeps;
+pub(crate) mod work;

@@ -5,11 +5,11 @@ use std::time::Instant;
 
 use hooke_core::{Integrator, State, StepError, StepReport, System, Vec3, check_step};
 
-use crate::step::attempt::Outcome;
 use crate::minimize::contact::Contact;
+use crate::step::attempt::Outcome;
 use crate::step::error_control::step_factor;
-use crate::step::implicit::{Implicit, Scheme};
-use crate::linear::solver::topology;
+use crate::step::implicit::Implicit;
+use crate::step::scheme::Scheme;
 
 impl Integrator for Implicit {
     fn step(
@@ -49,19 +49,16 @@ impl Integrator for Implicit {
         w.x_start.copy_from_slice(state.positions());
         w.v_start.copy_from_slice(state.velocities());
         let (start, end) = (state.time(), state.time() + dt);
-        let solver = self.solver_for_topology();
         let longest = if self.is_linearized() {
             f64::INFINITY
         } else {
-            topology(&mut self.topology, solver, self.amg_renewal, system)?
-                .rates
-                .longest_step(Self::MAX_CONDITION)
+            self.longest.get(system, Self::MAX_CONDITION)
         };
-        let floor = (dt / f64::from(self.max_halvings).exp2()).min(longest);
+        let floor = (dt / f64::from(self.settings.max_halvings).exp2()).min(longest);
         let mut h = self.substep.min(dt).min(longest);
         // Error control starts afresh at the floor: the first substep has
         // no past to estimate its error from.
-        if self.error_control.is_some() && !self.history.continues(system, state) {
+        if self.settings.error_control.is_some() && !self.history.continues(system, state) {
             h = floor;
         }
         let mut report = StepReport::default();
@@ -109,14 +106,13 @@ impl Integrator for Implicit {
                 }
             }
         }
-        if let Some(topology) = &mut self.topology {
-            topology.step_ended(clock.elapsed(), dt);
-        }
+        self.comparison
+            .step_ended(self.topology.as_mut(), clock.elapsed(), dt);
         Ok(report)
     }
 
     fn name(&self) -> &'static str {
-        match self.scheme {
+        match self.settings.scheme {
             Scheme::BackwardEuler => "backward-euler",
             Scheme::Bdf2 => "bdf2",
         }

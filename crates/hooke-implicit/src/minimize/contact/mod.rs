@@ -48,6 +48,7 @@
 //! obstacle, `Σ F·Δo` over its barrier and friction forces `F`.
 
 mod friction;
+mod limit;
 mod obstacles;
 mod pairs;
 

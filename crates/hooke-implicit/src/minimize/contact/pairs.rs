@@ -17,7 +17,6 @@
 use hooke_core::collision::barrier::barrier;
 use hooke_core::collision::barrier::{mollified_pair_barrier, pair_barrier};
 use hooke_core::collision::broad::{BroadPhase, Candidates};
-use hooke_core::collision::ccd::{edge_edge_ccd, point_triangle_ccd};
 use hooke_core::collision::distance::{
     Derivatives, edge_edge_closest, edge_edge_mollifier, edge_edge_squared, mollifier_threshold,
     point_triangle_closest, point_triangle_squared,
@@ -32,7 +31,7 @@ use crate::linear::matrix::BlockMatrix;
 /// search reaches, in units of `d̂`: its candidates stay valid, at any
 /// positions and along any motion, while no particle is more than half
 /// that margin from where they were found (a Verlet list).
-const MARGIN: f64 = 4.0;
+pub(super) const MARGIN: f64 = 4.0;
 
 /// The pairs of a system's surfaces, with the broad phase's buffers.
 ///
@@ -46,34 +45,34 @@ const MARGIN: f64 = 4.0;
 /// leaves its ball. A motion that would leave it gets a swept search.
 #[derive(Debug, Default)]
 pub(crate) struct Pairs {
-    broad: BroadPhase,
+    pub(super) broad: BroadPhase,
     /// The candidates of the last search: the pairs within reach of its
     /// positions (with the margin), or anywhere along a checked motion.
-    near: Candidates,
+    pub(super) near: Candidates,
     /// The positions of the last proximity search, while its candidates
     /// are a Verlet list (not after a swept search).
-    reference: Option<Vec<Vec3>>,
+    pub(super) reference: Option<Vec<Vec3>>,
     /// The margin `s` of the last proximity search.
-    margin: f64,
+    pub(super) margin: f64,
     /// The largest thickness of a pair.
-    thickest: f64,
+    pub(super) thickest: f64,
     /// Scratch for the end of a motion.
-    end: Vec<Vec3>,
+    pub(super) end: Vec<Vec3>,
 }
 
 /// One pair's particles, its thickness, and whether it is an edge–edge
 /// pair.
 #[derive(Debug, Clone, Copy)]
-struct Pair {
-    particles: [usize; 4],
-    thickness: f64,
+pub(super) struct Pair {
+    pub(super) particles: [usize; 4],
+    pub(super) thickness: f64,
     /// The mean of the two surfaces' friction coefficients.
-    friction: f64,
-    edges: bool,
+    pub(super) friction: f64,
+    pub(super) edges: bool,
 }
 
 impl Pair {
-    fn positions(&self, x: &[Vec3]) -> [Vec3; 4] {
+    pub(super) fn positions(&self, x: &[Vec3]) -> [Vec3; 4] {
         self.particles.map(|p| x[p])
     }
 }
@@ -87,7 +86,7 @@ impl Pairs {
     }
 
     /// The pairs among `candidates`, with their particles and thickness.
-    fn pairs<'a>(
+    pub(super) fn pairs<'a>(
         system: &'a System,
         candidates: &'a Candidates,
     ) -> impl Iterator<Item = Pair> + 'a {
@@ -132,7 +131,7 @@ impl Pairs {
 
     /// Whether every particle at `y` lies within half the margin of the
     /// last proximity search's positions.
-    fn covers(&self, y: &[Vec3]) -> bool {
+    pub(super) fn covers(&self, y: &[Vec3]) -> bool {
         let reach = (0.5 * self.margin).powi(2);
         self.reference.as_ref().is_some_and(|r| {
             r.len() == y.len() && r.iter().zip(y).all(|(r, y)| (y - r).norm_squared() < reach)
@@ -140,7 +139,7 @@ impl Pairs {
     }
 
     /// A proximity search at `x` with the margin (see the type's docs).
-    fn refresh(&mut self, system: &System, x: &[Vec3], activation: f64) {
+    pub(super) fn refresh(&mut self, system: &System, x: &[Vec3], activation: f64) {
         self.margin = MARGIN * activation;
         self.broad.proximity(
             system.surfaces(),
@@ -154,7 +153,7 @@ impl Pairs {
     }
 
     /// The squared distance of a pair at `x`, without derivatives.
-    fn squared(pair: &Pair, x: &[Vec3]) -> f64 {
+    pub(super) fn squared(pair: &Pair, x: &[Vec3]) -> f64 {
         let [p0, p1, p2, p3] = pair.positions(x);
         if pair.edges {
             edge_edge_closest(p0, p1, p2, p3).squared
@@ -164,7 +163,7 @@ impl Pairs {
     }
 
     /// The gap of a pair whose squared distance is `squared`.
-    fn gap(pair: &Pair, squared: f64) -> f64 {
+    pub(super) fn gap(pair: &Pair, squared: f64) -> f64 {
         squared.max(0.0).sqrt() - pair.thickness
     }
 
@@ -299,64 +298,6 @@ impl Pairs {
                 pair.friction * force,
             ));
         }
-    }
-
-    /// The pairs within the contact distance at `x` and the smallest gap
-    /// among them.
-    pub(crate) fn closest(&self, system: &System, x: &[Vec3], activation: f64) -> (usize, f64) {
-        let (mut count, mut smallest) = (0, f64::INFINITY);
-        for pair in Self::pairs(system, &self.near) {
-            let gap = Self::gap(&pair, Self::squared(&pair, x));
-            if gap < activation {
-                count += 1;
-                smallest = smallest.min(gap);
-            }
-        }
-        (count, smallest)
-    }
-
-    /// The largest `τ ∈ [0, 1]` such that the motion from `x` to `x + τ dx`
-    /// keeps every pair at least `keep` of its gap (additive CCD on the
-    /// pairs whose boxes, swept over the motion and inflated by the contact
-    /// distance `d̂` and the thickness, overlap — or on the Verlet list, when
-    /// the motion stays within its margin). Those pairs become the
-    /// candidates of [`Pairs::energy`] and [`Pairs::add`]: every pair within
-    /// reach at any point of the motion is among them.
-    pub(crate) fn limit(
-        &mut self,
-        system: &System,
-        x: &[Vec3],
-        dx: &[Vec3],
-        (keep, activation): (f64, f64),
-    ) -> f64 {
-        self.end.clear();
-        self.end.extend(x.iter().zip(dx).map(|(x, d)| x + d));
-        if !(self.covers(x) && self.covers(&self.end)) {
-            let reach = (0.5 * MARGIN * activation).powi(2);
-            if dx.iter().all(|d| d.norm_squared() < reach) {
-                self.refresh(system, x, activation);
-            } else {
-                self.reference = None;
-                self.broad.swept(
-                    system.surfaces(),
-                    x,
-                    &self.end,
-                    activation + self.thickest,
-                    &mut self.near,
-                );
-            }
-        }
-        let mut tau: f64 = 1.0;
-        for pair in Self::pairs(system, &self.near) {
-            let (q, d) = (pair.positions(x), pair.particles.map(|p| dx[p]));
-            let t = if pair.edges {
-                edge_edge_ccd(q, d, pair.thickness, keep)
-            } else {
-                point_triangle_ccd(q, d, pair.thickness, keep)
-            };
-            tau = tau.min(t);
-        }
-        tau
     }
 }
 
