@@ -19,6 +19,29 @@ use crate::linear::filter::Filter;
 use crate::linear::matrix::BlockMatrix;
 use crate::linear::pattern::Pattern;
 
+/// Why [`SparseCholesky`] could not factorize a matrix.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CholeskyError {
+    /// The filtered matrix is not positive definite: a pivot of the
+    /// factorization is not positive, at this particle where the
+    /// factorization names one.
+    NotPositiveDefinite {
+        /// The particle of the first non-positive pivot.
+        particle: Option<usize>,
+    },
+}
+
+impl CholeskyError {
+    /// The step error at time `time` that this error makes.
+    pub(crate) fn at(self, time: f64) -> StepError {
+        match self {
+            Self::NotPositiveDefinite { particle } => {
+                StepError::NotPositiveDefinite { time, particle }
+            }
+        }
+    }
+}
+
 /// A direct solver for the filtered system
 ///
 /// ```text
@@ -136,15 +159,15 @@ impl SparseCholesky {
     /// Solves `(S A S + I − S) x = S b`, the filtered system, into `x`.
     ///
     /// # Errors
-    /// If the filtered matrix is not positive definite: the particle of the
-    /// first non-positive pivot, where the factorization names one.
+    /// [`CholeskyError::NotPositiveDefinite`] if the filtered matrix is not
+    /// positive definite.
     pub fn solve(
         &mut self,
         a: &BlockMatrix,
         filters: &[Filter],
         b: &[Vec3],
         x: &mut [Vec3],
-    ) -> Result<(), Option<usize>> {
+    ) -> Result<(), CholeskyError> {
         self.factorize(a, filters)?;
         self.solve_factored(filters, b, x);
         Ok(())
@@ -155,7 +178,7 @@ impl SparseCholesky {
     ///
     /// # Errors
     /// As [`SparseCholesky::solve`].
-    pub fn factorize(&mut self, a: &BlockMatrix, filters: &[Filter]) -> Result<(), Option<usize>> {
+    pub fn factorize(&mut self, a: &BlockMatrix, filters: &[Filter]) -> Result<(), CholeskyError> {
         self.fill(a, filters);
         let dofs = self.rhs.len();
         let pattern =
@@ -177,7 +200,9 @@ impl SparseCholesky {
                         Some(p) => p.arrays().0.get(index).map(|&d| d as usize),
                         None => Some(index),
                     };
-                    dof.filter(|&d| d < dofs).map(|d| d / 3)
+                    CholeskyError::NotPositiveDefinite {
+                        particle: dof.filter(|&d| d < dofs).map(|d| d / 3),
+                    }
                 },
             )?;
         Ok(())

@@ -43,7 +43,8 @@ use crate::linear::pattern::Pattern;
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::Topology;
 use crate::linear::vector::{for_each_row, for_each_row3, spring_chunks, sum2};
-use crate::minimize::volume::{ElementTerms, volume_energy};
+use crate::minimize::linearization::Linearization;
+use crate::minimize::volume::{VolumeTerms, volume_energy};
 
 /// The incremental potential at a point and its rounding level.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,30 +53,6 @@ pub(crate) struct Potential {
     pub(crate) value: f64,
     /// How far rounding alone may move `Φ`, in J.
     pub(crate) rounding: f64,
-}
-
-/// Where and how to linearise.
-#[derive(Debug, Clone, Copy)]
-pub struct Linearization<'a> {
-    /// Positions `X` at which forces and stiffness blocks are evaluated.
-    pub positions: &'a [Vec3],
-    /// Velocities `V` at which damping forces are evaluated.
-    pub velocities: &'a [Vec3],
-    /// The displacement `u` multiplied by the stiffness in the right-hand
-    /// side, or `None` for zero.
-    pub displacement: Option<&'a [Vec3]>,
-    /// The inertia term `M(ṽ − V)` of the right-hand side.
-    pub inertia: &'a [Vec3],
-    /// `βh`.
-    pub beta_h: f64,
-    /// How compressed springs' stiffness blocks are treated, and with them
-    /// the volume elements' Hessians: exact with
-    /// [`CompressedSprings::Exact`], positive semidefinite stand-ins with
-    /// [`CompressedSprings::Clamped`] ([`Assembler`]'s `volume_terms`).
-    pub compressed: CompressedSprings,
-    /// Whether to take the damping directions from `positions` (the first
-    /// linearisation of a step) or keep those of the previous call.
-    pub freeze_directions: bool,
 }
 
 /// Assembles linearised steps; keeps the per-spring scratch between calls so
@@ -116,25 +93,11 @@ pub struct Assembler {
     pub(crate) touched: Vec<Range<usize>>,
     /// Per slot: the spring's damping direction, frozen at the step's start.
     pub(crate) directions: Vec<Vec3>,
-    /// Per element: its blocks and right-hand-side shares.
-    pub(super) element_terms: Vec<ElementTerms>,
-    /// Per element of the system identified by the first entry: the
-    /// pattern's slot between each pair of its vertices, if a spring joins
-    /// them.
-    pub(super) element_slots: (u64, Vec<[Option<usize>; 6]>),
-    /// Per particle: the volume elements' diagonal blocks, those plus the
-    /// bounds of their blocks outside the pattern, and their right-hand-side
-    /// shares.
-    pub(super) volume_rows: Vec<SymBlock>,
-    pub(super) volume_diagonals: Vec<SymBlock>,
+    /// The volume elements' blocks.
+    volume: VolumeTerms,
+    /// Per particle: the volume elements' right-hand-side shares.
     pub(crate) volume_rhs: Vec<Vec3>,
 }
-
-/// Element count from which the elements' blocks are evaluated in parallel
-/// (with the `parallel` feature): an element's projected Hessian takes
-/// about a microsecond, its exact one a tenth of that, against the tens
-/// of microseconds of waking the workers.
-pub const PARALLEL_MIN_ELEMENTS: usize = 1024;
 
 impl Assembler {
     /// Fills `a`, its block-Jacobi inverse and `b` for the linearisation
@@ -168,7 +131,7 @@ impl Assembler {
         }
         let (bh, bh2) = (lin.beta_h, lin.beta_h * lin.beta_h);
         let (x, v) = (lin.positions, lin.velocities);
-        let volume = self.volume_terms(system, lin, a);
+        let volume = self.volume.add(&mut self.volume_rhs, system, lin, a);
 
         // Pass one: each chunk of slots writes its springs' blocks and
         // scatters them, with their right-hand-side shares, into its own
@@ -250,7 +213,7 @@ impl Assembler {
         let (masses, gravity, gamma) = (system.masses(), system.gravity(), system.air_damping());
         let air = bh * gamma.unwrap_or(0.0);
         let (diagonals, accumulated) = (&self.diagonals, &self.rhs);
-        let (volume_diagonals, volume_rhs) = (&self.volume_diagonals, &self.volume_rhs);
+        let (volume_diagonals, volume_rhs) = (&self.volume.diagonals, &self.volume_rhs);
         let non_finite = AtomicUsize::new(usize::MAX);
         let not_definite = AtomicUsize::new(usize::MAX);
         for_each_row3(

@@ -7,8 +7,9 @@ use hooke_core::{CompressedSprings, StepError, StepReport, System, Vec3};
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::Topology;
 use crate::linear::vector::{dot, for_each_row, for_each_row2};
-use crate::minimize::assembly::{Assembler, Linearization, Potential};
+use crate::minimize::assembly::{Assembler, Potential};
 use crate::minimize::contact::Contact;
+use crate::minimize::linearization::Linearization;
 use crate::minimize::quasi_newton::QuasiNewton;
 use crate::minimize::residual::Point;
 

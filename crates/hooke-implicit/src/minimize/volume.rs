@@ -2,7 +2,7 @@
 
 use hooke_core::{CompressedSprings, Mat3, System, TET_PAIRS, Tet, TetHessian, Vec3};
 
-use super::assembly::{Assembler, Linearization, PARALLEL_MIN_ELEMENTS};
+use super::linearization::Linearization;
 use crate::linear::block::SymBlock;
 use crate::linear::matrix::BlockMatrix;
 
@@ -19,13 +19,34 @@ fn pair_index(p: usize, q: usize) -> usize {
 /// diagonal blocks (symmetrised) and blocks between its vertices, and its
 /// right-hand-side shares `−βh (∇E + H u)` at its four vertices.
 #[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct ElementTerms {
+struct ElementTerms {
     diagonal: [SymBlock; 4],
     pairs: [Mat3; 6],
     rhs: [Vec3; 4],
 }
 
-impl Assembler {
+/// Element count from which the elements' blocks are evaluated in parallel
+/// (with the `parallel` feature): an element's projected Hessian takes
+/// about a microsecond, its exact one a tenth of that, against the tens
+/// of microseconds of waking the workers.
+pub const PARALLEL_MIN_ELEMENTS: usize = 1024;
+
+/// The volume elements' share of a linearised step, with their buffers.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct VolumeTerms {
+    /// Per element: its blocks and right-hand-side shares.
+    element_terms: Vec<ElementTerms>,
+    /// Per element of the system identified by the first entry: the
+    /// pattern's slot between each pair of its vertices, if a spring joins
+    /// them.
+    element_slots: (u64, Vec<[Option<usize>; 6]>),
+    /// Per particle: the elements' diagonal blocks, and those plus the
+    /// bounds of their blocks outside the pattern.
+    rows: Vec<SymBlock>,
+    pub(crate) diagonals: Vec<SymBlock>,
+}
+
+impl VolumeTerms {
     /// Adds the volume elements' blocks between their vertices to `a` and
     /// gathers their diagonal blocks and right-hand-side shares per
     /// particle; returns whether the system has elements with a modulus.
@@ -40,8 +61,9 @@ impl Assembler {
     /// evaluated independently — in parallel from [`PARALLEL_MIN_ELEMENTS`]
     /// elements on — and then added to the matrix in element order, so both
     /// paths give the same sums.
-    pub(super) fn volume_terms(
+    pub(crate) fn add(
         &mut self,
+        volume_rhs: &mut Vec<Vec3>,
         system: &System,
         lin: &Linearization<'_>,
         a: &mut BlockMatrix,
@@ -110,12 +132,12 @@ impl Assembler {
         // The elements' diagonal blocks are summed per particle into one
         // row block for the product; the diagonal the preconditioners see
         // also gets the bounds of the blocks outside the springs' pattern.
-        self.volume_rows.clear();
-        self.volume_rows.resize(n, SymBlock::default());
-        self.volume_diagonals.clear();
-        self.volume_diagonals.resize(n, SymBlock::default());
-        self.volume_rhs.clear();
-        self.volume_rhs.resize(n, Vec3::zeros());
+        self.rows.clear();
+        self.rows.resize(n, SymBlock::default());
+        self.diagonals.clear();
+        self.diagonals.resize(n, SymBlock::default());
+        volume_rhs.clear();
+        volume_rhs.resize(n, Vec3::zeros());
         let elements = tets
             .iter()
             .zip(&self.element_terms)
@@ -125,25 +147,20 @@ impl Assembler {
                 continue;
             }
             for (p, &i) in t.vertices.iter().enumerate() {
-                self.volume_rhs[i] += terms.rhs[p];
-                self.volume_rows[i].add_assign(&terms.diagonal[p]);
+                volume_rhs[i] += terms.rhs[p];
+                self.rows[i].add_assign(&terms.diagonal[p]);
             }
             for ((&(p, q), &pair), &slot) in TET_PAIRS.iter().zip(&terms.pairs).zip(slots) {
                 let (i, j) = (t.vertices[p], t.vertices[q]);
                 if slot.is_none() {
                     let bound = SymBlock::scaled_identity(pair.norm());
-                    self.volume_diagonals[i].add_assign(&bound);
-                    self.volume_diagonals[j].add_assign(&bound);
+                    self.diagonals[i].add_assign(&bound);
+                    self.diagonals[j].add_assign(&bound);
                 }
                 a.add_extra_pair_at(i, j, pair, slot);
             }
         }
-        for (i, (row, diagonal)) in self
-            .volume_rows
-            .iter()
-            .zip(&mut self.volume_diagonals)
-            .enumerate()
-        {
+        for (i, (row, diagonal)) in self.rows.iter().zip(&mut self.diagonals).enumerate() {
             if *row != SymBlock::default() {
                 diagonal.add_assign(row);
                 a.extra_rows.push((i as u32, *row));
@@ -176,6 +193,7 @@ mod tests {
     use crate::linear::cholesky::SparseCholesky;
     use crate::linear::filter::Filter;
     use crate::linear::pattern::Pattern;
+    use crate::minimize::assembly::Assembler;
     use hooke_core::SystemBuilder;
 
     /// Two tetrahedra sharing a face, of moduli `moduli`, on five

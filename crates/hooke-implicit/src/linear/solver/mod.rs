@@ -4,13 +4,14 @@
 //! step takes ([`solve`]).
 
 pub(crate) mod auto;
+pub(crate) mod auto_settings;
 pub(crate) mod renewal;
 pub(crate) mod solve;
 pub(crate) mod topology;
 
 use crate::linear::cg::PcgSettings;
 
-pub use self::auto::AutoSettings;
+pub use self::auto_settings::AutoSettings;
 pub use self::renewal::AmgRenewal;
 
 /// How the linear system of each Newton step is solved.

@@ -173,9 +173,7 @@ impl Solve<'_> {
                     .as_mut()
                     .expect("built with the topology for this solver");
                 if *refactor {
-                    factor
-                        .factorize(matrix, filters)
-                        .map_err(|particle| StepError::NotPositiveDefinite { time, particle })?;
+                    factor.factorize(matrix, filters).map_err(|e| e.at(time))?;
                     *refactor = false;
                 }
                 let solved = pcg(
@@ -214,9 +212,7 @@ impl Solve<'_> {
             let factor = cholesky
                 .as_mut()
                 .expect("built with the topology for this solver");
-            factor
-                .factorize(matrix, filters)
-                .map_err(|particle| StepError::NotPositiveDefinite { time, particle })?;
+            factor.factorize(matrix, filters).map_err(|e| e.at(time))?;
             if factor.is_complete() {
                 factor.solve_factored(filters, b, x);
             } else {
@@ -245,7 +241,8 @@ mod tests {
     use super::*;
     use crate::linear::solver::renewal::AmgRenewal;
     use crate::linear::solver::topology::topology;
-    use crate::minimize::assembly::{Assembler, Linearization};
+    use crate::minimize::assembly::Assembler;
+    use crate::minimize::linearization::Linearization;
 
     /// The trial leaves an iterative choice with the fallback on when the
     /// factor is affordable; here block-Jacobi PCG capped at one iteration

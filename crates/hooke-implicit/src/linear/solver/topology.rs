@@ -4,7 +4,7 @@
 use hooke_core::{StepError, System};
 
 use super::LinearSolver;
-use super::auto::AutoSettings;
+use super::auto_settings::AutoSettings;
 use super::renewal::{AmgRenewal, AmgState};
 use crate::linear::cg::BlockJacobi;
 use crate::linear::cholesky::SparseCholesky;
