@@ -47,10 +47,10 @@ use criterion::measurement::WallTime;
 use criterion::{
     BatchSize, BenchmarkGroup, BenchmarkId, Criterion, criterion_group, criterion_main,
 };
-use hooke::implicit::{
-    Amg, AmgRenewal, AmgSettings, BlockJacobi, BlockMatrix, FastMassSpring, Filter, Implicit,
-    LinearSolver, PcgSettings, SparseCholesky, cg,
+use hooke::implicit::internals::{
+    Amg, AmgSettings, BlockJacobi, BlockMatrix, Filter, SparseCholesky, cg,
 };
+use hooke::implicit::{AmgRenewal, FastMassSpring, Implicit, LinearSolver, PcgSettings};
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Mass, Springs};
 

@@ -5,10 +5,8 @@
 //! set solves the system of another; and refreshing every level at every
 //! solve pays on a moving cloth.
 
-use hooke::implicit::{
-    Amg, AmgRenewal, AmgSettings, AutoSettings, BlockMatrix, Filter, Implicit, LinearSolver,
-    PcgSettings, SparseCholesky, cg,
-};
+use hooke::implicit::internals::{Amg, AmgSettings, BlockMatrix, Filter, SparseCholesky, cg};
+use hooke::implicit::{AmgRenewal, AutoSettings, Implicit, LinearSolver, PcgSettings};
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Lattice, Mass, Springs, TetSplit, Volume};
 

@@ -37,7 +37,7 @@ pub trait Preconditioner {
 /// of the 3x3 diagonal blocks, which [`Assembler::assemble`] fills as it
 /// assembles `A`.
 ///
-/// [`Assembler::assemble`]: crate::Assembler::assemble
+/// [`Assembler::assemble`]: crate::internals::Assembler::assemble
 #[derive(Debug, Clone, Default)]
 pub struct BlockJacobi {
     pub(crate) inverses: Vec<SymBlock>,

@@ -49,7 +49,7 @@ use crate::linear::vector::{MIN_CHUNK, PARALLEL_MIN_PARTICLES};
 /// matrix of springs alone holds none. The diagonal blocks the
 /// preconditioners read also carry, for each element block between
 /// particles no spring joins, a bound that keeps them positive definite
-/// without it ([`crate::Assembler`]).
+/// without it ([`Assembler`](crate::internals::Assembler)).
 #[derive(Debug, Clone)]
 pub struct BlockMatrix {
     pub(crate) pattern: Pattern,

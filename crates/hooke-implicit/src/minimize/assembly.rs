@@ -60,7 +60,7 @@ pub(crate) struct Potential {
 ///
 /// ```
 /// use hooke_core::{CompressedSprings, Vec3, reference::Sheet};
-/// use hooke_implicit::{Assembler, BlockJacobi, BlockMatrix, Linearization, Pattern};
+/// use hooke_implicit::internals::{Assembler, BlockJacobi, BlockMatrix, Linearization, Pattern};
 ///
 /// let system = Sheet::new(4).system()?;
 /// let state = system.initial_state();

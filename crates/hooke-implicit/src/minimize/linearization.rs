@@ -19,7 +19,7 @@ pub struct Linearization<'a> {
     /// How compressed springs' stiffness blocks are treated, and with them
     /// the volume elements' Hessians: exact with
     /// [`CompressedSprings::Exact`], positive semidefinite stand-ins with
-    /// [`CompressedSprings::Clamped`] (see [`VolumeTerms`](super::volume::VolumeTerms)).
+    /// [`CompressedSprings::Clamped`].
     pub compressed: CompressedSprings,
     /// Whether to take the damping directions from `positions` (the first
     /// linearisation of a step) or keep those of the previous call.

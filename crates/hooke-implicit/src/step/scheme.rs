@@ -21,7 +21,7 @@ pub enum Scheme {
     Bdf2,
 }
 
-/// How a step minimises its incremental potential `Φ` (see [`Implicit`]).
+/// How a step minimises its incremental potential `Φ` (see [`Implicit`](crate::Implicit)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Minimizer {
     /// Newton's method on the assembled 3×3-block system, the exact spring

@@ -48,7 +48,7 @@
 //! same sweep again. The pre- and post-sweeps are the same polynomial, so the
 //! cycle is a symmetric positive-definite operator and PCG converges with it.
 //! The finest level never copies `A`: its products go through
-//! [`BlockMatrix::apply`] with the filters, `Â x = S A S x + (I − S) x`.
+//! [`BlockMatrix::apply`](crate::internals::BlockMatrix::apply) with the filters, `Â x = S A S x + (I − S) x`.
 //!
 //! # Reuse
 //!

@@ -24,8 +24,8 @@ pub enum LinearSolver {
     /// symbolic factorization is computed once per topology.
     Cholesky,
     /// The filtered PCG preconditioned by one V-cycle of smoothed-aggregation
-    /// multigrid ([`Amg`](crate::Amg), default
-    /// [`AmgSettings`](crate::AmgSettings)) on the filtered matrix
+    /// multigrid ([`Amg`](crate::internals::Amg), default
+    /// [`AmgSettings`](crate::internals::AmgSettings)) on the filtered matrix
     /// `S A S + I − S`. The hierarchy is built at the first solve and kept
     /// across Newton iterations and steps; how much of it each solve renews
     /// is the integrator's [`AmgRenewal`] (by default every level's values,
