@@ -3,6 +3,7 @@
 //! back, the energy test, local error control and the conditioning limit.
 
 pub(crate) mod attempt;
+pub(crate) mod builders;
 pub(crate) mod comparison;
 pub(crate) mod conditioning;
 pub(crate) mod energy;
