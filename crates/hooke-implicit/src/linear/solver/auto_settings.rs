@@ -41,7 +41,7 @@ pub struct AutoSettings {
     /// trial: 2048.
     pub trial_particles: usize,
     /// The largest predicted Cholesky factor, in bytes, that the trial
-    /// factorizes: 1 GiB. The cloth (`benches/solvers.rs`) has a
+    /// factorizes: 1 GiB. The cloth (`benches/solvers/`) has a
     /// predicted factor of 0.24 GB at 200×200 particles, 1.16 GB at
     /// 400×400 (where multigrid solves about as fast) and 9.3 GB at
     /// 1000×1000.
@@ -64,7 +64,7 @@ pub struct AutoSettings {
     /// its fastest iterative candidate may be to be compared on whole
     /// steps: 3. Measuring the slower one costs one step at its speed, so
     /// candidates far apart are not measured: on the tetrahedral lattice of
-    /// `benches/solvers.rs` the factorization takes 8.6 times
+    /// `benches/solvers/` the factorization takes 8.6 times
     /// block-Jacobi's time, on the rope multigrid 6.7 times the
     /// factorization's. On the 200×200 cloth swinging from its pins the
     /// trial's ratio was 1.3–1.8 where multigrid's steps were faster.
