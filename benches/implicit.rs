@@ -14,10 +14,10 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use faer::sparse::linalg::matmul::sparse_dense_matmul;
 use faer::{Accum, MatMut, MatRef, Par};
 use hooke::core::CompressedSprings;
-use hooke::implicit::{
-    Assembler, BlockJacobi, BlockMatrix, Filter, Implicit, Linearization, Pattern, PcgSettings,
-    SparseCholesky, cg,
+use hooke::implicit::internals::{
+    Assembler, BlockJacobi, BlockMatrix, Filter, Linearization, Pattern, SparseCholesky, cg,
 };
+use hooke::implicit::{Implicit, PcgSettings};
 use hooke::prelude::*;
 
 #[allow(dead_code)] // the benches use a few of the tests' helpers

@@ -5,10 +5,10 @@
 mod common;
 
 use hooke::core::{CompressedSprings, ForceEvaluator};
-use hooke::implicit::{
-    Assembler, BlockJacobi, BlockMatrix, ErrorControl, Filter, Implicit, LinearSolver,
-    Linearization, Pattern, PcgSettings, SparseCholesky, cg,
+use hooke::implicit::internals::{
+    Assembler, BlockJacobi, BlockMatrix, Filter, Linearization, Pattern, SparseCholesky, cg,
 };
+use hooke::implicit::{ErrorControl, Implicit, LinearSolver, PcgSettings};
 use hooke::prelude::*;
 
 fn pcg(tolerance: f64) -> LinearSolver {

@@ -7,7 +7,7 @@
 use faer::sparse::linalg::matmul::sparse_dense_matmul;
 use faer::{Accum, MatMut, MatRef, Par};
 use hooke::core::{CompressedSprings, TetHessian};
-use hooke::implicit::{
+use hooke::implicit::internals::{
     Assembler, BlockJacobi, BlockMatrix, Linearization, PARALLEL_MIN_ELEMENTS,
     PARALLEL_MIN_PARTICLES, Pattern,
 };

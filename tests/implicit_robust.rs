@@ -11,7 +11,7 @@
 //! `cargo run --release --example extreme_table` prints the table's Newton
 //! iterations, substeps and time per step.
 
-use hooke::implicit::{Implicit, LinearSolver};
+use hooke::implicit::{AutoSettings, Implicit};
 use hooke::prelude::*;
 use hooke::scenes::{Lattice, Mass, TetSplit};
 
@@ -107,7 +107,7 @@ fn backward_euler_at_its_defaults_never_gains_energy_on_the_extreme_table() {
     }
 }
 
-/// From [`LinearSolver::AUTO_TRIAL_PARTICLES`] on, the default solver is
+/// From [`AutoSettings::trial_particles`](hooke::implicit::AutoSettings::trial_particles) on, the default solver is
 /// chosen by a timed trial; on a 50×50 sheet at 10⁴ N/m and 0.1 s (where
 /// multigrid and the factor solve the trial about as fast, and multigrid's
 /// later solves can reach their cap) backward Euler at its defaults still
@@ -124,7 +124,7 @@ fn backward_euler_at_its_defaults_on_a_sheet_large_enough_for_the_trial() {
     }
     .system()
     .unwrap();
-    assert!(system.particle_count() >= LinearSolver::AUTO_TRIAL_PARTICLES);
+    assert!(system.particle_count() >= AutoSettings::DEFAULT.trial_particles);
     let run = run(&system, &mut Implicit::backward_euler(), 0.1, 2);
     assert_backward_euler("50×50 sheet, k = 1e4 N/m, dt = 0.1 s", &run);
     assert_eq!(run.report.unconverged_solves, 0, "{:?}", run.report);

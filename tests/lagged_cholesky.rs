@@ -3,7 +3,8 @@
 //! factorization on a later one, and the integrator's steps with it match
 //! plain Cholesky's.
 
-use hooke::implicit::{BlockMatrix, Implicit, LinearSolver, PcgSettings, SparseCholesky, cg};
+use hooke::implicit::internals::{BlockMatrix, SparseCholesky, cg};
+use hooke::implicit::{Implicit, LinearSolver, PcgSettings};
 use hooke::prelude::*;
 
 mod common;

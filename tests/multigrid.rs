@@ -5,10 +5,8 @@
 //! set solves the system of another; and refreshing every level at every
 //! solve pays on a moving cloth.
 
-use hooke::implicit::{
-    Amg, AmgRenewal, AmgSettings, BlockMatrix, Filter, Implicit, LinearSolver, PcgSettings,
-    SparseCholesky, cg,
-};
+use hooke::implicit::internals::{Amg, AmgSettings, BlockMatrix, Filter, SparseCholesky, cg};
+use hooke::implicit::{AmgRenewal, AutoSettings, Implicit, LinearSolver, PcgSettings};
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Lattice, Mass, Springs, TetSplit, Volume};
 
@@ -273,7 +271,7 @@ fn the_hierarchy_follows_a_changing_constraint_set() {
 fn auto_times_the_candidates_and_reports_its_choice() {
     let rope = common::long_rope(10_000);
     let tets = common::tet_cube(16);
-    assert!(tets.particle_count() >= LinearSolver::AUTO_TRIAL_PARTICLES);
+    assert!(tets.particle_count() >= AutoSettings::DEFAULT.trial_particles);
     for (system, h, expected) in [
         (cloth(10), H, "cholesky"),
         (rope, H, "cholesky"),

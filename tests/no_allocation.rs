@@ -141,7 +141,8 @@ fn implicit_steps_do_not_allocate() {
 /// the pool's injector queue, which allocates a block per 63 jobs.
 #[cfg(feature = "parallel")]
 fn parallel_implicit_steps_do_not_allocate() {
-    use hooke::implicit::{Implicit, LinearSolver, PARALLEL_MIN_PARTICLES, PcgSettings};
+    use hooke::implicit::internals::PARALLEL_MIN_PARTICLES;
+    use hooke::implicit::{Implicit, LinearSolver, PcgSettings};
     let side = (PARALLEL_MIN_PARTICLES as f64).sqrt().ceil() as usize;
     let system = Sheet::new(side).system().unwrap();
     let mut integrator =

@@ -2,7 +2,9 @@
 //! this file by its path).
 
 use hooke::core::CompressedSprings;
-use hooke::implicit::{Assembler, BlockJacobi, BlockMatrix, Filter, Linearization, Pattern};
+use hooke::implicit::internals::{
+    Assembler, BlockJacobi, BlockMatrix, Filter, Linearization, Pattern,
+};
 use hooke::prelude::*;
 use hooke::scenes::{Mass, Springs, TetSplit, Volume};
 

@@ -17,12 +17,10 @@ use crate::describe::{describe, step_text};
 use crate::lab::{
     AccuracyArgs, MergeArgs, StabilityArgs, accuracy_command, merge_command, stability_command,
 };
-use crate::runner::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, run};
+use crate::run_options::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE};
+use crate::runner::run;
+use crate::scene_source::load_scene;
 use crate::summary::Summary;
-
-/// The built-in scene `hooke run` runs when given no scene: a free, stiff
-/// cloth falling onto a sphere on a floor, with backward Euler.
-pub const DEFAULT_SCENE: &str = "stiff-cloth";
 
 /// Simulate mass-spring systems and measure what each integrator costs.
 ///
@@ -187,16 +185,6 @@ fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
         }),
         None => Ok(()),
     }
-}
-
-/// The scene file at `path`, else the built-in scene `builtin`, else the
-/// default scene.
-pub(crate) fn load_scene(path: Option<&Path>, builtin: Option<&str>) -> Result<Scene, CliError> {
-    Ok(match (path, builtin) {
-        (Some(path), _) => file::load(path)?,
-        (None, Some(name)) => builtin::load(name)?,
-        (None, None) => builtin::load(DEFAULT_SCENE)?,
-    })
 }
 
 fn run_scene(args: &RunArgs) -> Result<Scene, CliError> {

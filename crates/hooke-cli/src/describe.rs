@@ -3,7 +3,7 @@
 use std::fmt::Write;
 
 use hooke_core::{Obstacle, Path, System, Vec3};
-use hooke_implicit::{LinearSolver, Minimizer};
+use hooke_implicit::{AutoSettings, Minimizer};
 use hooke_scenes::{IntegratorSpec, Scene, SceneBody, SolverSpec};
 
 use crate::cli_error::CliError;
@@ -236,9 +236,9 @@ fn integrator_parameters(spec: &IntegratorSpec, particles: usize) -> String {
             let strict = if strict { ", strict" } else { "" };
             let solver = match solver {
                 SolverSpec::Cholesky => "sparse Cholesky".to_owned(),
-                SolverSpec::Auto if particles < LinearSolver::AUTO_TRIAL_PARTICLES => format!(
+                SolverSpec::Auto if particles < AutoSettings::DEFAULT.trial_particles => format!(
                     "auto: sparse Cholesky (below {} particles)",
-                    LinearSolver::AUTO_TRIAL_PARTICLES
+                    AutoSettings::DEFAULT.trial_particles
                 ),
                 SolverSpec::Auto => "auto: sparse Cholesky, multigrid PCG or block-Jacobi PCG, \
                      whichever a timed trial at the first solve (and, when two come close, \

@@ -20,7 +20,7 @@ use hooke_viz::{
 use rayon::prelude::*;
 
 use crate::frames::FrameInfo;
-use crate::runner::{ANIMATION_FILE, PREVIEW_FILE, RunOptions};
+use crate::run_options::{ANIMATION_FILE, PREVIEW_FILE, RunOptions};
 
 /// A frame whose contacts are at least this share of the run's most is
 /// resting on the obstacles. (A falling cloth touches most at the moment

@@ -3,7 +3,7 @@
 //! directory as it goes.
 
 use std::fs;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::{Duration, Instant};
 
 use hooke_core::collision::intersect::intersecting_triangle_pairs;
@@ -17,82 +17,11 @@ use hooke_viz::{run_bounds, scene_mesh};
 use crate::cli_error::CliError;
 use crate::frames::FrameWriter;
 use crate::pictures::write_pictures;
+use crate::run_options::{RunOptions, SUMMARY_FILE};
 use crate::step_record::StepRecord;
 use crate::summary::{Summary, median};
 use crate::surface_record::SurfaceRecord;
 use crate::volume_record::VolumeRecord;
-
-/// The file name of the run summary in the output directory.
-pub const SUMMARY_FILE: &str = "summary.json";
-/// The file name of the picture of the frame that shows the drape (see
-/// [`run`]).
-pub const PREVIEW_FILE: &str = "preview.png";
-/// The file name of the animation of the frames.
-pub const ANIMATION_FILE: &str = "animation.gif";
-
-/// Where a [`run`] writes and what.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RunOptions {
-    /// The output directory, created if missing.
-    pub out: PathBuf,
-    /// Whether to write [`ANIMATION_FILE`].
-    pub gif: bool,
-    /// The simulated time, s, whose frame (the nearest written)
-    /// [`PREVIEW_FILE`] shows instead of the frame of the bodies at rest;
-    /// finite and not negative.
-    pub preview_time: Option<f64>,
-    /// Width and height of [`PREVIEW_FILE`], pixels.
-    pub preview_size: (u32, u32),
-    /// Width and height of the animation's frames, pixels.
-    pub gif_size: (u32, u32),
-}
-
-impl RunOptions {
-    /// Writes everything into `out`: a 960×720 preview and a 480×360
-    /// animation.
-    ///
-    /// ```
-    /// let options = hooke_cli::RunOptions::new("hooke-out");
-    /// assert!(options.gif);
-    /// ```
-    #[must_use]
-    pub fn new(out: impl Into<PathBuf>) -> Self {
-        Self {
-            out: out.into(),
-            gif: true,
-            preview_time: None,
-            preview_size: (960, 720),
-            gif_size: (480, 360),
-        }
-    }
-
-    /// The same options with the animation written or not.
-    ///
-    /// ```
-    /// let options = hooke_cli::RunOptions::new("hooke-out").gif(false);
-    /// assert!(!options.gif);
-    /// ```
-    #[must_use]
-    pub fn gif(self, gif: bool) -> Self {
-        Self { gif, ..self }
-    }
-
-    /// The same options with the preview showing the frame nearest the
-    /// simulated time `time` in s (`None`: the frame of the bodies at
-    /// rest, see [`run`]).
-    ///
-    /// ```
-    /// let options = hooke_cli::RunOptions::new("hooke-out").preview_time(Some(3.0));
-    /// assert_eq!(options.preview_time, Some(3.0));
-    /// ```
-    #[must_use]
-    pub fn preview_time(self, time: Option<f64>) -> Self {
-        Self {
-            preview_time: time,
-            ..self
-        }
-    }
-}
 
 /// Runs `scene` and writes its output into `options.out`:
 ///
@@ -100,13 +29,13 @@ impl RunOptions {
 ///   every [`Timing::steps_per_frame`]-th step, and the last state if it
 ///   does not fall on a frame (frames an earlier run left in the directory
 ///   are removed first), written as the run goes;
-/// - [`PREVIEW_FILE`]: the frame that shows the bodies resting on the
+/// - [`PREVIEW_FILE`](crate::PREVIEW_FILE): the frame that shows the bodies resting on the
 ///   obstacles — of the frames with at least half the run's most
 ///   particle–obstacle contacts, the one with the least kinetic energy
 ///   (without contacts, the last frame), or with
 ///   [`RunOptions::preview_time`] the frame nearest that time — recorded
 ///   in [`Summary::preview_frame`];
-/// - [`ANIMATION_FILE`]: the frames subsampled to at most
+/// - [`ANIMATION_FILE`](crate::ANIMATION_FILE): the frames subsampled to at most
 ///   [`MAX_GIF_FRAMES`](hooke_viz::MAX_GIF_FRAMES) pictures that play in
 ///   about real time;
 /// - [`SUMMARY_FILE`]: the [`Summary`], which is also returned.

@@ -102,7 +102,7 @@ fn check_describes_a_shipped_scene() {
 /// timed trial from there on.
 #[test]
 fn check_says_what_the_automatic_solver_does_at_the_scenes_size() {
-    let threshold = hooke_implicit::LinearSolver::AUTO_TRIAL_PARTICLES;
+    let threshold = hooke_implicit::AutoSettings::DEFAULT.trial_particles;
     let dir = tempfile::tempdir().unwrap();
     // cloth-on-sphere has 900 particles and no solver key; a square cloth
     // of `side` columns and rows has side² particles.

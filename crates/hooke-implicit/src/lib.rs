@@ -6,16 +6,16 @@
 //! step is stable at any step size (see [`Implicit`] for the equations).
 //! Per step:
 //!
-//! 1. **Assembly** ([`Assembler`]): the spring Hessian
+//! 1. **Assembly** (`Assembler`): the spring Hessian
 //!    blocks `H` and damping blocks `c d dᵀ` from `hooke-core` are combined
 //!    into `A = M + βh C + β²h² K` and the right-hand side, in two parallel
 //!    passes that never allocate: one per spring, one per block row. The
-//!    [`Pattern`] comes from the topology and is built once.
-//! 2. **Solve** ([`LinearSolver`]): [`cg::solve`] (Baraff–Witkin's modified
+//!    `Pattern` comes from the topology and is built once.
+//! 2. **Solve** ([`LinearSolver`]): `cg::solve` (Baraff–Witkin's modified
 //!    PCG, pins and other per-particle constraints acting through the
-//!    [`Filter`] inside the loop) preconditioned by block-Jacobi, by a
-//!    smoothed-aggregation multigrid V-cycle ([`Amg`], the [`amg`] module) or
-//!    by a lagged Cholesky factor, or [`SparseCholesky`] (faer, symbolic
+//!    `Filter` inside the loop) preconditioned by block-Jacobi, by a
+//!    smoothed-aggregation multigrid V-cycle (`Amg`, the `amg` module) or
+//!    by a lagged Cholesky factor, or `SparseCholesky` (faer, symbolic
 //!    analysis reused) on the same filtered system; by default
 //!    ([`LinearSolver::Auto`]) Cholesky for small systems and, for larger
 //!    ones, whichever of Cholesky, multigrid and block-Jacobi PCG a timed
@@ -88,8 +88,8 @@
 //!
 //! The matrix is symmetric and made of symmetric 3x3 blocks: one diagonal
 //! block per particle, and for each spring the same block `−K_s` at `(i, j)`
-//! and `(j, i)`. [`BlockMatrix`] stores each `K_s` once as the six entries of
-//! a [`SymBlock`], in the [`Pattern`]'s slot order (springs by their lower
+//! and `(j, i)`. `BlockMatrix` stores each `K_s` once as the six entries of
+//! a `SymBlock`, in the `Pattern`'s slot order (springs by their lower
 //! endpoint), and multiplies spring by spring, `y = M̃x + Σ_s ±K_s (xᵢ − xⱼ)`:
 //! 52 bytes and nine multiply-adds per spring, against `18 × 16` bytes for
 //! a scalar compressed-column matrix with 64-bit indices (faer's
@@ -118,40 +118,32 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-pub mod amg;
-mod assembly;
-mod attempt;
-mod block;
-pub mod cg;
-mod cholesky;
-mod conditioning;
-mod contact;
-mod energy;
-pub mod error_control;
-mod fast_mass_spring;
-mod filter;
-mod implicit;
-mod laplacian;
-mod matrix;
-mod newton;
-mod pattern;
-mod pins;
-mod quasi_newton;
-mod residual;
-mod solver;
+mod linear;
+mod minimize;
 mod step;
-mod vector;
 
-pub use amg::{Amg, AmgSettings};
-pub use assembly::{Assembler, Linearization, PARALLEL_MIN_ELEMENTS};
-pub use block::SymBlock;
-pub use cg::{BlockJacobi, PcgSettings};
-pub use cholesky::{FactorPreconditioner, SparseCholesky};
-pub use error_control::ErrorControl;
-pub use fast_mass_spring::FastMassSpring;
-pub use filter::Filter;
-pub use implicit::{Implicit, Minimizer, Scheme};
-pub use matrix::BlockMatrix;
-pub use pattern::Pattern;
-pub use solver::{AmgRenewal, LinearSolver};
-pub use vector::PARALLEL_MIN_PARTICLES;
+pub use linear::cg::PcgSettings;
+pub use linear::solver::{AmgRenewal, AutoSettings, LinearSolver};
+pub use minimize::fast_mass_spring::FastMassSpring;
+pub use step::error_control::{self, ErrorControl};
+pub use step::implicit::Implicit;
+pub use step::scheme::{Minimizer, Scheme};
+
+/// The building blocks of a step — assembly, the block matrix and its
+/// pattern, the filters, PCG, sparse Cholesky and multigrid — for the
+/// workspace's tests and benchmarks. Not part of the supported API: an
+/// integrator is configured through [`Implicit`] and [`LinearSolver`].
+#[doc(hidden)]
+pub mod internals {
+    pub use crate::linear::amg::{self, Amg, AmgSettings};
+    pub use crate::linear::block::SymBlock;
+    pub use crate::linear::cg::{self, BlockJacobi};
+    pub use crate::linear::cholesky::{CholeskyError, FactorPreconditioner, SparseCholesky};
+    pub use crate::linear::filter::Filter;
+    pub use crate::linear::matrix::BlockMatrix;
+    pub use crate::linear::pattern::Pattern;
+    pub use crate::linear::vector::PARALLEL_MIN_PARTICLES;
+    pub use crate::minimize::assembly::Assembler;
+    pub use crate::minimize::linearization::Linearization;
+    pub use crate::minimize::volume::PARALLEL_MIN_ELEMENTS;
+}

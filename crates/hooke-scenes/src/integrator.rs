@@ -39,7 +39,7 @@ pub enum SolverSpec {
         max_iterations: usize,
     },
     /// Chosen by measured cost ([`LinearSolver::Auto`]): sparse Cholesky
-    /// below [`LinearSolver::AUTO_TRIAL_PARTICLES`] particles; from there
+    /// below [`AutoSettings::trial_particles`](hooke_implicit::AutoSettings::trial_particles) particles; from there
     /// on the first solve times the factorization (unless its predicted
     /// factor is too large), multigrid PCG and block-Jacobi PCG on the
     /// step's matrix, and keeps the fastest, an iterative one only if it

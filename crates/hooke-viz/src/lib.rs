@@ -94,6 +94,7 @@ mod backdrop;
 mod bounds;
 mod camera;
 mod error;
+mod frame;
 mod framing;
 mod mesh;
 pub mod plot;

@@ -16,8 +16,8 @@ use hooke_lab::{LabError, Method, Range, Shard};
 use hooke_scenes::{Scene, SolverSpec};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::cli::load_scene;
 use crate::cli_error::CliError;
+use crate::scene_source::load_scene;
 
 pub(crate) use accuracy::{AccuracyArgs, accuracy_command};
 pub(crate) use merge::{MergeArgs, merge_command};

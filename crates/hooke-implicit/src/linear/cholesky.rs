@@ -1,0 +1,406 @@
+//! Sparse Cholesky with the symbolic analysis done once per topology (faer).
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::amd;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Side};
+use hooke_core::{Mat3, StepError, Vec3};
+
+use std::cell::RefCell;
+
+use crate::linear::amg::fine::Neighbours;
+use crate::linear::cg::Preconditioner;
+use crate::linear::filter::Filter;
+use crate::linear::matrix::BlockMatrix;
+use crate::linear::pattern::Pattern;
+
+/// Why [`SparseCholesky`] could not factorize a matrix.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CholeskyError {
+    /// The filtered matrix is not positive definite: a pivot of the
+    /// factorization is not positive, at this particle where the
+    /// factorization names one.
+    NotPositiveDefinite {
+        /// The particle of the first non-positive pivot.
+        particle: Option<usize>,
+    },
+}
+
+impl CholeskyError {
+    /// The step error at time `time` that this error makes.
+    pub(crate) fn at(self, time: f64) -> StepError {
+        match self {
+            Self::NotPositiveDefinite { particle } => {
+                StepError::NotPositiveDefinite { time, particle }
+            }
+        }
+    }
+}
+
+/// A direct solver for the filtered system
+///
+/// ```text
+/// (S A S + I − S) x = S b
+/// ```
+///
+/// whose solution is the one the filtered PCG converges to: `x` lies in the
+/// free subspace (`x = S x`, so constrained components are zero) and solves
+/// `A x = b` there. For a pinned particle `S = 0` and its rows become the
+/// identity, so the matrix stays positive definite whenever `A` is.
+///
+/// The lower triangle of the scalar `3n × 3n` matrix is laid out in
+/// compressed columns once, the fill-reducing ordering (AMD) and symbolic
+/// factorization are computed once, and every solve only copies the filtered
+/// blocks into place, factorizes numerically (`L Lᵀ`) into preallocated
+/// storage and solves, without allocating.
+pub struct SparseCholesky {
+    col_ptr: Vec<u32>,
+    row_idx: Vec<u32>,
+    values: Vec<f64>,
+    /// Per slot of the pattern, the position of the first entry of each of
+    /// the three columns of its spring's block below the diagonal.
+    slot_columns: Vec<[u32; 3]>,
+    symbolic: SymbolicCholesky<u32>,
+    factor: Vec<f64>,
+    factor_memory: MemBuffer,
+    solve_memory: MemBuffer,
+    rhs: Vec<f64>,
+    par: Par,
+    /// Whether every block of the matrix last filled lay in the pattern.
+    complete: bool,
+}
+
+impl std::fmt::Debug for SparseCholesky {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SparseCholesky")
+            .field("dofs", &self.rhs.len())
+            .field("nonzeros", &self.values.len())
+            .field("factor_nonzeros", &self.factor.len())
+            .finish_non_exhaustive()
+    }
+}
+
+/// Particle count from which faer factorizes in parallel. On the issue's
+/// cloth (`benches/solvers/`, 2 cores) faer's parallel factorization and
+/// solve took 438 ms against 366 ms sequentially at 40 000 particles, and
+/// 2.27 s against 2.63 s at 160 000; in converged steps of the falling
+/// cloth it took 170 ms against 92 ms at 4 096 particles and 749 ms
+/// against 411 ms at 10 000.
+#[cfg(feature = "parallel")]
+const PARALLEL_MIN_PARTICLES: usize = 100_000;
+
+impl SparseCholesky {
+    /// The layout and symbolic factorization for matrices with the pattern of
+    /// `a`.
+    ///
+    /// # Errors
+    /// [`StepError::SystemTooLarge`] if the scalar matrix does not fit 32-bit
+    /// indices.
+    pub fn new(a: &BlockMatrix) -> Result<Self, StepError> {
+        let (n, springs) = (a.rows(), a.pattern().slots());
+        let dofs = 3 * n;
+        let too_large = || StepError::SystemTooLarge {
+            particles: n,
+            springs,
+        };
+        let nonzeros = 6 * n + 9 * springs;
+        let index = |k: usize| u32::try_from(k).map_err(|_| too_large());
+        index(nonzeros)?;
+        // Column 3q + c holds rows 3q + c..3q + 2 of the diagonal block, then
+        // rows 3p..3p + 2 for every neighbour p > q in increasing order.
+        let mut col_ptr = Vec::with_capacity(dofs + 1);
+        let mut row_idx = Vec::with_capacity(nonzeros);
+        let mut slot_columns = vec![[0; 3]; springs];
+        col_ptr.push(0);
+        let blocks = a.pattern();
+        #[allow(clippy::needless_range_loop)] // `c` is a column within the block
+        for q in 0..n {
+            for c in 0..3 {
+                row_idx.extend((c..3).map(|r| (3 * q + r) as u32));
+                for t in blocks.upper(q) {
+                    slot_columns[t][c] = row_idx.len() as u32;
+                    row_idx.extend((0..3).map(|r| (3 * blocks.column(t) + r) as u32));
+                }
+                col_ptr.push(row_idx.len() as u32);
+            }
+        }
+        let pattern = SymbolicSparseColMatRef::new_checked(dofs, dofs, &col_ptr, None, &row_idx);
+        let symbolic = factorize_symbolic_cholesky(
+            pattern,
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams::default(),
+        )
+        .map_err(|_| too_large())?;
+        let par = parallelism(n);
+        let factor_memory =
+            MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
+        let solve_memory = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par));
+        Ok(Self {
+            factor: vec![0.0; symbolic.len_val()],
+            values: vec![0.0; row_idx.len()],
+            col_ptr,
+            row_idx,
+            slot_columns,
+            symbolic,
+            factor_memory,
+            solve_memory,
+            rhs: vec![0.0; dofs],
+            par,
+            complete: true,
+        })
+    }
+
+    /// Solves `(S A S + I − S) x = S b`, the filtered system, into `x`.
+    ///
+    /// # Errors
+    /// [`CholeskyError::NotPositiveDefinite`] if the filtered matrix is not
+    /// positive definite.
+    pub fn solve(
+        &mut self,
+        a: &BlockMatrix,
+        filters: &[Filter],
+        b: &[Vec3],
+        x: &mut [Vec3],
+    ) -> Result<(), CholeskyError> {
+        self.factorize(a, filters)?;
+        self.solve_factored(filters, b, x);
+        Ok(())
+    }
+
+    /// Factorizes `S A S + I − S` numerically, keeping the factor for
+    /// [`SparseCholesky::solve_factored`].
+    ///
+    /// # Errors
+    /// As [`SparseCholesky::solve`].
+    pub fn factorize(&mut self, a: &BlockMatrix, filters: &[Filter]) -> Result<(), CholeskyError> {
+        self.fill(a, filters);
+        let dofs = self.rhs.len();
+        let pattern =
+            SymbolicSparseColMatRef::new_checked(dofs, dofs, &self.col_ptr, None, &self.row_idx);
+        let matrix = SparseColMatRef::new(pattern, &self.values);
+        self.symbolic
+            .factorize_numeric_llt(
+                &mut self.factor,
+                matrix,
+                Side::Lower,
+                LltRegularization::default(),
+                self.par,
+                MemStack::new(&mut self.factor_memory),
+                Default::default(),
+            )
+            .map_err(
+                |faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }| {
+                    let dof = match self.symbolic.perm() {
+                        Some(p) => p.arrays().0.get(index).map(|&d| d as usize),
+                        None => Some(index),
+                    };
+                    CholeskyError::NotPositiveDefinite {
+                        particle: dof.filter(|&d| d < dofs).map(|d| d / 3),
+                    }
+                },
+            )?;
+        Ok(())
+    }
+
+    /// `x = S L⁻ᵀ L⁻¹ S b` with the factor `L Lᵀ` of the last
+    /// [`SparseCholesky::factorize`] (zero before the first): the solution
+    /// of the filtered system that was factorized, and for a later matrix
+    /// of the same pattern (a later Newton iteration, a later step) a
+    /// preconditioner ([`SparseCholesky::preconditioner`]).
+    pub fn solve_factored(&mut self, filters: &[Filter], b: &[Vec3], x: &mut [Vec3]) {
+        let dofs = self.rhs.len();
+        for (i, (bi, f)) in b.iter().zip(filters).enumerate() {
+            self.rhs[3 * i..3 * i + 3].copy_from_slice(f.apply(*bi).as_slice());
+        }
+        LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut self.rhs, dofs, 1),
+            self.par,
+            MemStack::new(&mut self.solve_memory),
+        );
+        for (i, (xi, f)) in x.iter_mut().zip(filters).enumerate() {
+            *xi = f.apply(Vec3::from_column_slice(&self.rhs[3 * i..3 * i + 3]));
+        }
+    }
+
+    /// The last factor as a PCG preconditioner for the filters `filters`:
+    /// `P⁻¹ r = S L⁻ᵀ L⁻¹ S r`, symmetric positive definite whatever matrix
+    /// was factorized, and exact for that one.
+    pub fn preconditioner<'a>(&'a mut self, filters: &'a [Filter]) -> FactorPreconditioner<'a> {
+        FactorPreconditioner {
+            cholesky: RefCell::new(self),
+            filters,
+        }
+    }
+
+    /// Whether the last [`SparseCholesky::factorize`] factored the whole
+    /// matrix: every block beside the springs' (of a contact or a volume
+    /// element) joined two particles a spring joins too. Otherwise it
+    /// factored the matrix without the blocks that lie outside its
+    /// pattern, and [`SparseCholesky::solve_factored`] solves that one.
+    #[must_use]
+    pub fn is_complete(&self) -> bool {
+        self.complete
+    }
+
+    /// Copies the lower triangle of `S A S + I − S` into `values`: the
+    /// blocks outside the springs' pattern left out
+    /// ([`SparseCholesky::is_complete`]).
+    fn fill(&mut self, a: &BlockMatrix, filters: &[Filter]) {
+        let sandwich = |block: Mat3, left: Filter, right: Filter| match (left, right) {
+            (Filter::Free, Filter::Free) => block,
+            _ => left.matrix() * block * right.matrix(),
+        };
+        for (q, &filter) in filters.iter().enumerate() {
+            let s = filter.matrix();
+            let block = sandwich(a.diagonal(q), filter, filter) + Mat3::identity() - s;
+            for c in 0..3 {
+                let start = self.col_ptr[3 * q + c] as usize;
+                for r in c..3 {
+                    self.values[start + r - c] = block[(r, c)];
+                }
+            }
+        }
+        let pattern = a.pattern();
+        for q in 0..pattern.rows() {
+            for t in pattern.upper(q) {
+                let p = pattern.column(t);
+                // The slot's block at (q, p), transposed to the lower (p, q).
+                let block = sandwich(a.slot_block(t).transpose(), filters[p], filters[q]);
+                for (c, &start) in self.slot_columns[t].iter().enumerate() {
+                    for r in 0..3 {
+                        self.values[start as usize + r] = block[(r, c)];
+                    }
+                }
+            }
+        }
+        self.complete = a.extra_within_pattern();
+    }
+}
+
+/// A factor of an earlier matrix preconditioning PCG:
+/// [`SparseCholesky::preconditioner`].
+#[derive(Debug)]
+pub struct FactorPreconditioner<'a> {
+    cholesky: RefCell<&'a mut SparseCholesky>,
+    filters: &'a [Filter],
+}
+
+impl Preconditioner for FactorPreconditioner<'_> {
+    fn apply(&self, r: &[Vec3], z: &mut [Vec3]) {
+        self.cholesky
+            .borrow_mut()
+            .solve_factored(self.filters, r, z);
+    }
+}
+
+/// The number of scalar entries of the Cholesky factor of a matrix with
+/// `pattern`'s blocks, predicted without factorizing: the approximate
+/// minimum degree ordering of the particle graph (one node per particle, an
+/// edge per pair of particles a spring joins) counts the off-diagonal
+/// entries `f` of that graph's factor as it orders it, and the block
+/// factor has a 3x3 block for each (`9 f`) and the lower triangle of one per
+/// particle (`6 n`). [`SparseCholesky`] orders the scalar matrix, whose
+/// 3x3 blocks AMD finds again, so its factor has about this size. `None`
+/// if the graph does not fit 32-bit indices.
+pub(crate) fn predicted_factor_entries(pattern: &Pattern) -> Option<usize> {
+    let n = pattern.rows();
+    // Both triangles of the graph in compressed columns, each column's rows
+    // in increasing order.
+    let neighbours = Neighbours::new(pattern);
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    let mut row_idx = Vec::new();
+    col_ptr.push(0u32);
+    for q in 0..n {
+        row_idx.extend(neighbours.of(q).iter().map(|&(p, _)| p));
+        col_ptr.push(u32::try_from(row_idx.len()).ok()?);
+    }
+    drop(neighbours);
+    let graph = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
+    let (mut perm, mut perm_inv) = (vec![0u32; n], vec![0u32; n]);
+    let mut memory = MemBuffer::new(amd::order_scratch::<u32>(n, row_idx.len()));
+    let count = amd::order(
+        &mut perm,
+        &mut perm_inv,
+        graph,
+        amd::Control::default(),
+        MemStack::new(&mut memory),
+    )
+    .ok()?;
+    // AMD's division count is the factor's off-diagonal entry count.
+    Some(9 * count.n_div as usize + 6 * n)
+}
+
+/// Sequential for small systems, faer's rayon parallelism for large ones.
+#[cfg(feature = "parallel")]
+fn parallelism(particles: usize) -> Par {
+    if particles >= PARALLEL_MIN_PARTICLES {
+        Par::rayon(0)
+    } else {
+        Par::Seq
+    }
+}
+
+/// Sequential: the `parallel` feature is off.
+#[cfg(not(feature = "parallel"))]
+fn parallelism(_particles: usize) -> Par {
+    Par::Seq
+}
+
+#[cfg(test)]
+mod tests {
+    use hooke_core::SystemBuilder;
+    use hooke_core::reference::Sheet;
+
+    use super::*;
+
+    fn pattern(build: impl Fn(&mut SystemBuilder)) -> Pattern {
+        let mut builder = SystemBuilder::new();
+        build(&mut builder);
+        Pattern::new(&builder.build().unwrap()).unwrap()
+    }
+
+    /// Graphs whose fill is known: a chain and a star (its centre ordered
+    /// last) fill nothing, so their factors have the graph's `n − 1` edges.
+    #[test]
+    fn predicted_factor_of_graphs_without_fill() {
+        let n = 100;
+        let chain = pattern(|b| {
+            for i in 0..n {
+                b.particle(1.0, [i as f64, 0.0, 0.0]);
+            }
+            for i in 1..n {
+                b.spring(i - 1, i, 1.0);
+            }
+        });
+        let star = pattern(|b| {
+            b.particle(1.0, [0.0, 0.0, 0.0]);
+            for i in 1..n {
+                let angle = i as f64;
+                b.particle(1.0, [angle.cos(), angle.sin(), 0.0]);
+                b.spring(0, i, 1.0);
+            }
+        });
+        for p in [chain, star] {
+            assert_eq!(predicted_factor_entries(&p), Some(9 * (n - 1) + 6 * n));
+        }
+    }
+
+    /// On a cloth the prediction from the particle graph is within a factor
+    /// of two of the factor faer allocates for the scalar matrix.
+    #[test]
+    fn predicted_factor_of_a_cloth_is_about_faers() {
+        let system = Sheet::new(24).system().unwrap();
+        let a = BlockMatrix::zeros(Pattern::new(&system).unwrap());
+        let predicted = predicted_factor_entries(a.pattern()).unwrap() as f64;
+        let actual = SparseCholesky::new(&a).unwrap().factor.len() as f64;
+        let ratio = predicted / actual;
+        assert!((0.5..=2.0).contains(&ratio), "{predicted} against {actual}");
+    }
+}

@@ -1,0 +1,13 @@
+//! The linear algebra: the 3×3-block matrix and its pattern, the
+//! per-particle filters, PCG, sparse Cholesky, smoothed-aggregation
+//! multigrid, and the choice among them for each Newton step's system.
+
+pub mod amg;
+pub(crate) mod block;
+pub mod cg;
+pub(crate) mod cholesky;
+pub(crate) mod filter;
+pub(crate) mod matrix;
+pub(crate) mod pattern;
+pub(crate) mod solver;
+pub(crate) mod vector;

@@ -1,0 +1,187 @@
+//! Friction as a lagged dissipation potential (Li et al., *Incremental
+//! Potential Contact*, 2020, §5).
+//!
+//! A contact's relative velocity is a weighted sum of its particles'
+//! velocities less the obstacle's, `u = Σₖ wₖ v_{pₖ} − u_o` (one particle
+//! of weight 1 against an obstacle; a point and a triangle's corners, or two
+//! edges' ends, against each other). Its tangential part in the contact
+//! plane, `s = Tᵀu ∈ ℝ²`, is braked by the force of Coulomb's law with
+//! sticking smoothed below the speed `ε`:
+//!
+//! ```text
+//! F = −μλ f₁(|s|) T s/|s|,   f₁(s) = 2s/ε − s²/ε² (s < ε),  1 (s ≥ ε),
+//! ```
+//!
+//! minus the gradient of the convex dissipation potential
+//! `D(v) = μλ f₀(|s|)` with `f₀' = f₁`:
+//! `f₀(s) = s²/ε − s³/(3ε²) + ε/3` below `ε`, `s` above. The normal force
+//! `λ` and the basis `T` are lagged: taken at the start of the step, so
+//! that `D` is a fixed, convex term of the step's incremental potential and
+//! Newton's method converges on it. Its Hessian in `s`,
+//!
+//! ```text
+//! μλ [f₁'(|s|) ŝŝᵀ + f₁(|s|)/|s| (I − ŝŝᵀ)],
+//! ```
+//!
+//! is positive semidefinite (`f₁' ≥ 0`), tends to `2μλ/ε I` at `s = 0`,
+//! and enters the step's matrix as the blocks `wₖ wₗ T H Tᵀ`.
+
+use hooke_core::{Mat3, Vec3};
+use nalgebra::{Matrix2, Vector2};
+
+use crate::linear::block::SymBlock;
+use crate::linear::matrix::BlockMatrix;
+
+/// `f₀(s)`: the dissipation potential per unit bound.
+fn f0(s: f64, eps: f64) -> f64 {
+    if s >= eps {
+        s
+    } else {
+        s * s / eps - s * s * s / (3.0 * eps * eps) + eps / 3.0
+    }
+}
+
+/// `f₁(s)/s` and `f₁'(s)`, finite at `s = 0`.
+fn slopes(s: f64, eps: f64) -> (f64, f64) {
+    if s >= eps {
+        (1.0 / s, 0.0)
+    } else {
+        (
+            2.0 / eps - s / (eps * eps),
+            2.0 / eps - 2.0 * s / (eps * eps),
+        )
+    }
+}
+
+/// One contact's friction, lagged at the start of the step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Lagged {
+    /// The particles of the contact (`count` of them).
+    pub(crate) particles: [u32; 4],
+    /// Their weights `wₖ` in the relative velocity.
+    pub(crate) weights: [f64; 4],
+    pub(crate) count: usize,
+    /// The tangent basis `T` (two orthonormal vectors normal to the contact
+    /// normal).
+    pub(crate) basis: [Vec3; 2],
+    /// The obstacle's velocity `u_o` (zero between particles).
+    pub(crate) velocity: Vec3,
+    /// The bound `μλ`, N.
+    pub(crate) bound: f64,
+}
+
+impl Lagged {
+    /// A contact along `normal` (unit) with the given particles and weights.
+    pub(crate) fn new(
+        particles: &[usize],
+        weights: &[f64],
+        normal: Vec3,
+        velocity: Vec3,
+        bound: f64,
+    ) -> Self {
+        let mut p = [0; 4];
+        let mut w = [0.0; 4];
+        for (k, (&i, &wk)) in particles.iter().zip(weights).enumerate() {
+            p[k] = i as u32;
+            w[k] = wk;
+        }
+        Self {
+            particles: p,
+            weights: w,
+            count: particles.len(),
+            basis: tangent_basis(normal),
+            velocity,
+            bound,
+        }
+    }
+
+    /// The tangential relative velocity `s = Tᵀ(Σ wₖ v_{pₖ} − u_o)`.
+    fn tangential(&self, v: &[Vec3]) -> Vector2<f64> {
+        let mut u = -self.velocity;
+        for k in 0..self.count {
+            u += self.weights[k] * v[self.particles[k] as usize];
+        }
+        Vector2::new(self.basis[0].dot(&u), self.basis[1].dot(&u))
+    }
+
+    /// `D(v) = μλ f₀(|s|)`.
+    pub(crate) fn value(&self, v: &[Vec3], eps: f64) -> f64 {
+        self.bound * f0(self.tangential(v).norm(), eps)
+    }
+
+    /// The friction force `−μλ f₁(|s|) T ŝ` at `v` (on a particle of weight
+    /// 1).
+    pub(crate) fn force(&self, v: &[Vec3], eps: f64) -> Vec3 {
+        let s = self.tangential(v);
+        let (ratio, _) = slopes(s.norm(), eps);
+        -self.bound * ratio * (self.basis[0] * s.x + self.basis[1] * s.y)
+    }
+
+    /// Adds `scale · D` at `v` to a Newton system `A δ = −∇Φ`: subtracts
+    /// `scale ∇D` from `b` and adds `scale ∇²D` to `a`.
+    pub(crate) fn add(
+        &self,
+        v: &[Vec3],
+        eps: f64,
+        scale: f64,
+        b: &mut [Vec3],
+        a: &mut BlockMatrix,
+    ) {
+        let s = self.tangential(v);
+        let speed = s.norm();
+        let (ratio, slope) = slopes(speed, eps);
+        let unit = if speed > 0.0 {
+            s / speed
+        } else {
+            Vector2::zeros()
+        };
+        let outer = unit * unit.transpose();
+        let hessian: Matrix2<f64> =
+            (slope * outer + ratio * (Matrix2::identity() - outer)) * self.bound;
+        let t = Mat3::from_columns(&[self.basis[0], self.basis[1], Vec3::zeros()]);
+        let gradient = self.bound * ratio * (self.basis[0] * s.x + self.basis[1] * s.y);
+        let mut h2 = Mat3::zeros();
+        h2.fixed_view_mut::<2, 2>(0, 0).copy_from(&hessian);
+        let block = t * h2 * t.transpose();
+        for k in 0..self.count {
+            let (pk, wk) = (self.particles[k] as usize, self.weights[k]);
+            b[pk] -= scale * wk * gradient;
+            a.add_extra_row(pk, SymBlock::symmetric_part(&(scale * wk * wk * block)));
+            for l in k + 1..self.count {
+                let pl = self.particles[l] as usize;
+                a.add_extra_pair(pk, pl, scale * wk * self.weights[l] * block);
+            }
+        }
+    }
+}
+
+/// Two orthonormal vectors normal to the unit vector `n`.
+pub(crate) fn tangent_basis(n: Vec3) -> [Vec3; 2] {
+    let helper = if n.x.abs() < 0.9 {
+        Vec3::x()
+    } else {
+        Vec3::y()
+    };
+    let t0 = n.cross(&helper).normalize();
+    [t0, n.cross(&t0)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_dissipation_potential_is_smooth_and_its_slope_is_coulombs_law() {
+        let eps = 1e-3;
+        for s in [1e-5, 3e-4, 9.99e-4, 1e-3, 2e-3, 1.0] {
+            let h = 1e-9;
+            let derivative = (f0(s + h, eps) - f0(s - h, eps)) / (2.0 * h);
+            let (ratio, slope) = slopes(s, eps);
+            assert!((derivative - ratio * s).abs() < 1e-6, "f₀' at {s}");
+            let second =
+                (slopes(s + h, eps).0 * (s + h) - slopes(s - h, eps).0 * (s - h)) / (2.0 * h);
+            assert!((second - slope).abs() < 1e-3 / eps, "f₁' at {s}");
+        }
+        assert!((f0(eps, eps) - eps).abs() < 1e-18);
+    }
+}

@@ -1,0 +1,389 @@
+//! Contact between surface primitives as terms of the incremental
+//! potential: point–triangle and edge–edge pairs of the system's collision
+//! surfaces, within a body (self-collision) and between bodies.
+//!
+//! A pair of the 12 coordinates `q` (its four particles) at distance `d(q)`
+//! has the gap `g = d − ξ`, with `ξ` the mean of its two surfaces'
+//! thicknesses, and the term `κ b(g)` — for two edges `κ m(q) b(g)`, with
+//! the mollifier `m` that fades the term out as the edges turn parallel,
+//! where the edge–edge distance stops being smooth (Li et al. 2020, §4.3).
+//! Its gradient and Hessian in `q` come from `hooke_core::collision`, the
+//! Hessian projected onto its positive part; the Hessian's 3x3 blocks join
+//! the step's matrix on the four particles' diagonals and between them.
+//! The broad phase finds the pairs whose boxes come within reach; the
+//! line search is bounded by additive continuous collision detection on
+//! every pair whose boxes, swept over the motion, overlap.
+
+use hooke_core::collision::barrier::barrier;
+use hooke_core::collision::barrier::{mollified_pair_barrier, pair_barrier};
+use hooke_core::collision::broad::{BroadPhase, Candidates};
+use hooke_core::collision::distance::{
+    Derivatives, edge_edge_closest, edge_edge_mollifier, edge_edge_squared, mollifier_threshold,
+    point_triangle_closest, point_triangle_squared,
+};
+use hooke_core::{Mat3, System, Vec3};
+
+use super::friction::Lagged;
+use crate::linear::block::SymBlock;
+use crate::linear::matrix::BlockMatrix;
+
+/// How far beyond the contact distance `d̂` (plus thickness) a proximity
+/// search reaches, in units of `d̂`: its candidates stay valid, at any
+/// positions and along any motion, while no particle is more than half
+/// that margin from where they were found (a Verlet list).
+pub(super) const MARGIN: f64 = 4.0;
+
+/// The pairs of a system's surfaces, with the broad phase's buffers.
+///
+/// A proximity search at `x_s` with reach `d̂ + ξ + s` (`ξ` the largest
+/// thickness, `s` the margin) lists every pair closer than that; a pair
+/// left out stays farther than `d̂ + ξ` apart as long as every particle
+/// keeps within `s/2` of `x_s` — a ball is convex, so along a straight
+/// motion between two such configurations too. The list then holds every
+/// pair with a barrier term and every pair that can collide, and serves
+/// the iterations of a step, and the steps after it, until a particle
+/// leaves its ball. A motion that would leave it gets a swept search.
+#[derive(Debug, Default)]
+pub(crate) struct Pairs {
+    pub(super) broad: BroadPhase,
+    /// The candidates of the last search: the pairs within reach of its
+    /// positions (with the margin), or anywhere along a checked motion.
+    pub(super) near: Candidates,
+    /// The positions of the last proximity search, while its candidates
+    /// are a Verlet list (not after a swept search).
+    pub(super) reference: Option<Vec<Vec3>>,
+    /// The margin `s` of the last proximity search.
+    pub(super) margin: f64,
+    /// The largest thickness of a pair.
+    pub(super) thickest: f64,
+    /// Scratch for the end of a motion.
+    pub(super) end: Vec<Vec3>,
+}
+
+/// One pair's particles, its thickness, and whether it is an edge–edge
+/// pair.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Pair {
+    pub(super) particles: [usize; 4],
+    pub(super) thickness: f64,
+    /// The mean of the two surfaces' friction coefficients.
+    pub(super) friction: f64,
+    pub(super) edges: bool,
+}
+
+impl Pair {
+    pub(super) fn positions(&self, x: &[Vec3]) -> [Vec3; 4] {
+        self.particles.map(|p| x[p])
+    }
+}
+
+impl Pairs {
+    /// Sets up the pairs of `system`.
+    pub(crate) fn begin(&mut self, system: &System) {
+        self.thickest = (0..system.surface_count())
+            .map(|g| system.surface_thickness(g))
+            .fold(0.0, f64::max);
+    }
+
+    /// The pairs among `candidates`, with their particles and thickness.
+    pub(super) fn pairs<'a>(
+        system: &'a System,
+        candidates: &'a Candidates,
+    ) -> impl Iterator<Item = Pair> + 'a {
+        let mesh = system.surfaces();
+        let thickness =
+            |g: usize, h: usize| 0.5 * (system.surface_thickness(g) + system.surface_thickness(h));
+        let friction =
+            |g: usize, h: usize| 0.5 * (system.surface_friction(g) + system.surface_friction(h));
+        let point_triangle = candidates.point_triangle.iter().map(move |&(v, t)| {
+            let (v, t) = (v as usize, t as usize);
+            let [a, b, c] = mesh.triangles()[t];
+            let (g, h) = (mesh.vertex_group(v), mesh.triangle_group(t));
+            Pair {
+                particles: [mesh.vertices()[v], a, b, c],
+                thickness: thickness(g, h),
+                friction: friction(g, h),
+                edges: false,
+            }
+        });
+        let edge_edge = candidates.edge_edge.iter().map(move |&(e, f)| {
+            let (e, f) = (e as usize, f as usize);
+            let ([a0, a1], [b0, b1]) = (mesh.edges()[e], mesh.edges()[f]);
+            let (g, h) = (mesh.edge_group(e), mesh.edge_group(f));
+            Pair {
+                particles: [a0, a1, b0, b1],
+                thickness: thickness(g, h),
+                friction: friction(g, h),
+                edges: true,
+            }
+        });
+        point_triangle.chain(edge_edge)
+    }
+
+    /// Makes the candidates cover `x`: every pair within the contact
+    /// distance `d̂` (plus its thickness) there is among them. Keeps the
+    /// list while `x` lies within its margin, otherwise searches anew.
+    pub(crate) fn search(&mut self, system: &System, x: &[Vec3], activation: f64) {
+        if !self.covers(x) {
+            self.refresh(system, x, activation);
+        }
+    }
+
+    /// Whether every particle at `y` lies within half the margin of the
+    /// last proximity search's positions.
+    pub(super) fn covers(&self, y: &[Vec3]) -> bool {
+        let reach = (0.5 * self.margin).powi(2);
+        self.reference.as_ref().is_some_and(|r| {
+            r.len() == y.len() && r.iter().zip(y).all(|(r, y)| (y - r).norm_squared() < reach)
+        })
+    }
+
+    /// A proximity search at `x` with the margin (see the type's docs).
+    pub(super) fn refresh(&mut self, system: &System, x: &[Vec3], activation: f64) {
+        self.margin = MARGIN * activation;
+        self.broad.proximity(
+            system.surfaces(),
+            x,
+            activation + self.thickest + self.margin,
+            &mut self.near,
+        );
+        let reference = self.reference.get_or_insert_with(Vec::new);
+        reference.clear();
+        reference.extend_from_slice(x);
+    }
+
+    /// The squared distance of a pair at `x`, without derivatives.
+    pub(super) fn squared(pair: &Pair, x: &[Vec3]) -> f64 {
+        let [p0, p1, p2, p3] = pair.positions(x);
+        if pair.edges {
+            edge_edge_closest(p0, p1, p2, p3).squared
+        } else {
+            point_triangle_closest(p0, p1, p2, p3).squared
+        }
+    }
+
+    /// The gap of a pair whose squared distance is `squared`.
+    pub(super) fn gap(pair: &Pair, squared: f64) -> f64 {
+        squared.max(0.0).sqrt() - pair.thickness
+    }
+
+    /// The edge–edge mollifier threshold of a pair, from its rest positions.
+    fn threshold(system: &System, pair: &Pair) -> f64 {
+        let rest = system.initial_positions();
+        let [r0, r1, r2, r3] = pair.particles.map(|p| rest[p]);
+        mollifier_threshold(r0, r1, r2, r3)
+    }
+
+    /// The barrier term's value of a pair at `x` (`m b(g)` for two edges,
+    /// `b(g)` otherwise): zero beyond the contact distance, infinite if the
+    /// gap is not positive. The line search's cheap path: no derivatives.
+    fn value(system: &System, pair: &Pair, x: &[Vec3], activation: f64) -> f64 {
+        let gap = Self::gap(pair, Self::squared(pair, x));
+        if gap >= activation {
+            return 0.0;
+        }
+        if gap <= 0.0 {
+            return f64::INFINITY;
+        }
+        let b = barrier(gap, activation).0;
+        if pair.edges {
+            let [p0, p1, p2, p3] = pair.positions(x);
+            b * edge_edge_mollifier(p0, p1, p2, p3, Self::threshold(system, pair)).value
+        } else {
+            b
+        }
+    }
+
+    /// The barrier term of a pair at `x`, with its derivatives in the
+    /// pair's 12 coordinates; `None` beyond the contact distance.
+    fn term(system: &System, pair: &Pair, x: &[Vec3], activation: f64) -> Option<Derivatives> {
+        if Self::gap(pair, Self::squared(pair, x)) >= activation {
+            return None;
+        }
+        let [p0, p1, p2, p3] = pair.positions(x);
+        if pair.edges {
+            let threshold = Self::threshold(system, pair);
+            let squared = edge_edge_squared(p0, p1, p2, p3);
+            let mollifier = edge_edge_mollifier(p0, p1, p2, p3, threshold);
+            mollified_pair_barrier(&squared, &mollifier, pair.thickness, activation)
+        } else {
+            let squared = point_triangle_squared(p0, p1, p2, p3);
+            pair_barrier(&squared, pair.thickness, activation)
+        }
+    }
+
+    /// `Σ b` over the candidates of the last search at `x`, which must be
+    /// the configuration it searched or a point of the motion it checked
+    /// (`κ` not applied);
+    /// infinite if a gap is not positive.
+    pub(crate) fn energy(&self, system: &System, x: &[Vec3], activation: f64) -> f64 {
+        Self::pairs(system, &self.near)
+            .map(|pair| Self::value(system, &pair, x, activation))
+            .sum()
+    }
+
+    /// Adds `κ Σ b` over the candidates of the last search (as in
+    /// [`Pairs::energy`]) at `x` to a Newton system in the velocities
+    /// (`x = x̃ + βh v`): `b −= βh κ ∇b`, `A += β²h² κ ∇²b`; returns the
+    /// number of pairs within the contact distance.
+    pub(crate) fn add(
+        &self,
+        system: &System,
+        x: &[Vec3],
+        (kappa, beta_h, activation): (f64, f64, f64),
+        b: &mut [Vec3],
+        a: &mut BlockMatrix,
+    ) -> usize {
+        let (kb, kbb) = (kappa * beta_h, kappa * beta_h * beta_h);
+        let mut count = 0;
+        for pair in Self::pairs(system, &self.near) {
+            let Some(term) = Self::term(system, &pair, x, activation) else {
+                continue;
+            };
+            count += 1;
+            for (k, &p) in pair.particles.iter().enumerate() {
+                let g = term.gradient.fixed_rows::<3>(3 * k).into_owned();
+                b[p] -= kb * g;
+                let block: Mat3 = term.hessian.fixed_view::<3, 3>(3 * k, 3 * k).into_owned();
+                a.add_extra_row(p, SymBlock::symmetric_part(&(kbb * block)));
+                for (l, &q) in pair.particles.iter().enumerate().skip(k + 1) {
+                    let block: Mat3 = term.hessian.fixed_view::<3, 3>(3 * k, 3 * l).into_owned();
+                    a.add_extra_pair(p, q, kbb * block);
+                }
+            }
+        }
+        count
+    }
+
+    /// The lagged friction of the pairs of the last search within the
+    /// contact distance at `x` (the step's start), with barrier stiffness
+    /// `kappa`, into `out`: the normal force `λ = κ m |b'(g)|` (`m` the
+    /// edge–edge mollifier, 1 otherwise) along the line between the closest
+    /// points, whose weights make the relative velocity.
+    pub(crate) fn lag_friction(
+        &self,
+        system: &System,
+        x: &[Vec3],
+        (kappa, activation): (f64, f64),
+        out: &mut Vec<Lagged>,
+    ) {
+        for pair in Self::pairs(system, &self.near) {
+            if pair.friction <= 0.0 {
+                continue;
+            }
+            let [p0, p1, p2, p3] = pair.positions(x);
+            let (closest, mollifier) = if pair.edges {
+                let threshold = Self::threshold(system, &pair);
+                (
+                    edge_edge_closest(p0, p1, p2, p3),
+                    edge_edge_mollifier(p0, p1, p2, p3, threshold).value,
+                )
+            } else {
+                (point_triangle_closest(p0, p1, p2, p3), 1.0)
+            };
+            let distance = closest.squared.sqrt();
+            let gap = distance - pair.thickness;
+            if gap <= 0.0 || gap >= activation || distance == 0.0 {
+                continue;
+            }
+            let between: Vec3 = (0..4)
+                .map(|k| closest.weights[k] * x[pair.particles[k]])
+                .sum();
+            let force = kappa * mollifier * barrier(gap, activation).1.abs();
+            out.push(Lagged::new(
+                &pair.particles,
+                &closest.weights,
+                between / distance,
+                Vec3::zeros(),
+                pair.friction * force,
+            ));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hooke_core::SystemBuilder;
+
+    /// Two 6 × 6 sheets, 10 cm wide, 2 mm apart, with a contact distance of
+    /// 1 mm.
+    fn sheets() -> System {
+        let mut b = SystemBuilder::new();
+        let n = 6;
+        for height in [0.0, 2e-3] {
+            let mut indices = Vec::new();
+            for i in 0..n {
+                for j in 0..n {
+                    let (u, v) = (0.02 * i as f64, 0.02 * j as f64);
+                    indices.push(b.particle(1e-3, [u + 0.3 * height, height, v]));
+                }
+            }
+            let at = |i: usize, j: usize| indices[i * n + j];
+            let mut triangles = Vec::new();
+            for i in 0..n - 1 {
+                for j in 0..n - 1 {
+                    triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                    triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+                }
+            }
+            b.surface(&triangles);
+        }
+        b.contact_distance(1e-3);
+        b.build().unwrap()
+    }
+
+    /// The pairs of `candidates` closer than `reach` at `x`.
+    fn within(system: &System, candidates: &Candidates, x: &[Vec3], reach: f64) -> Vec<[usize; 4]> {
+        let mut close: Vec<[usize; 4]> = Pairs::pairs(system, candidates)
+            .filter(|p| Pairs::gap(p, Pairs::squared(p, x)) < reach)
+            .map(|p| p.particles)
+            .collect();
+        close.sort_unstable();
+        close
+    }
+
+    #[test]
+    fn the_verlet_list_holds_every_close_pair_until_a_particle_leaves_its_ball() {
+        let system = sheets();
+        let d_hat = system.contact_distance();
+        let x0 = system.initial_positions().to_vec();
+        let mut pairs = Pairs::default();
+        pairs.begin(&system);
+        pairs.search(&system, &x0, d_hat);
+        // Every particle moved by just under half the margin, in a
+        // pseudo-random direction: the list is kept, and still holds every
+        // pair a fresh search finds within d̂.
+        let mut seed = 7_u64;
+        let mut unit = || {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            (seed >> 11) as f64 / (1_u64 << 53) as f64 - 0.5
+        };
+        let reach = 0.5 * MARGIN * d_hat;
+        let x1: Vec<Vec3> = x0
+            .iter()
+            .map(|x| {
+                let d = Vec3::new(unit(), unit(), unit()).normalize();
+                x + 0.99 * reach * d
+            })
+            .collect();
+        pairs.search(&system, &x1, d_hat);
+        assert_eq!(
+            pairs.reference.as_deref(),
+            Some(&x0[..]),
+            "the list was renewed"
+        );
+        let mut fresh = Candidates::default();
+        BroadPhase::default().proximity(system.surfaces(), &x1, d_hat, &mut fresh);
+        let needed = within(&system, &fresh, &x1, d_hat);
+        assert!(!needed.is_empty());
+        let kept = within(&system, &pairs.near, &x1, d_hat);
+        assert_eq!(kept, needed);
+        // One particle beyond its ball: the list is renewed at the new
+        // positions.
+        let mut x2 = x1.clone();
+        x2[0] += Vec3::new(0.0, 1.01 * reach, 0.0) + (x0[0] - x1[0]);
+        pairs.search(&system, &x2, d_hat);
+        assert_eq!(pairs.reference.as_deref(), Some(&x2[..]));
+    }
+}

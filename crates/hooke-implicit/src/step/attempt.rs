@@ -1,0 +1,358 @@
+//! One attempt at an implicit (sub)step: the scheme's coefficients, Baraff
+//! & Witkin's linearised solve, Newton's method from the better of two
+//! starting points, the energy test, and the commit of an accepted step.
+//! [`Implicit`]'s docs give the equations.
+
+use hooke_core::{CompressedSprings, State, StepError, StepReport, System, Vec3};
+
+use crate::linear::solver::solve::Solve;
+use crate::linear::solver::topology::topology;
+use crate::linear::vector::for_each_row;
+use crate::minimize::contact::Contact;
+use crate::minimize::linearization::Linearization;
+use crate::minimize::newton::{self, Iterates, Newton, velocity_scale};
+use crate::step::energy::{absorption, energy, pin_work, rounding};
+use crate::step::implicit::Implicit;
+use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::work::Work;
+
+/// What became of an attempt; `error` is the estimated local error and the
+/// order of the estimate, where error control is on and the history allows
+/// an estimate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Outcome {
+    /// Committed to the state; `easy` when Newton took at most a third of
+    /// its cap, so the next substep may be longer.
+    Accepted {
+        easy: bool,
+        error: Option<(f64, u32)>,
+    },
+    /// Not converged, gaining energy or above the error tolerance, above
+    /// the floor: the state, the contacts and the history are as before.
+    Rejected { error: Option<(f64, u32)> },
+}
+
+/// The coefficients of a step of `h` after one of `previous`:
+/// `x = x̃ + βh v` and `v = ṽ + βh M⁻¹ f(x, v)` with
+/// `x̃ = a xₙ − b xₙ₋₁`, `ṽ = a vₙ − b vₙ₋₁`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Coefficients {
+    beta: f64,
+    current: f64,
+    past: f64,
+}
+
+impl Coefficients {
+    /// Backward Euler (`β = a = 1`, `b = 0`), or variable-step BDF2 with
+    /// step ratio `ω = h/hₙ₋₁ ≤ 2`: `β = (1+ω)/(1+2ω)`,
+    /// `a = (1+ω)²/(1+2ω)`, `b = ω²/(1+2ω)` (for `ω = 1` the familiar
+    /// `2/3, 4/3, 1/3`). BDF2 (re)starts with a backward-Euler step.
+    fn new(scheme: Scheme, h: f64, previous: Option<f64>) -> Self {
+        let ratio = previous
+            .map(|last| h / last)
+            .filter(|&omega| scheme == Scheme::Bdf2 && omega <= 2.0 + 1e-9);
+        ratio.map_or(
+            Self {
+                beta: 1.0,
+                current: 1.0,
+                past: 0.0,
+            },
+            |omega| {
+                let d = 1.0 + 2.0 * omega;
+                Self {
+                    beta: (1.0 + omega) / d,
+                    current: (1.0 + omega).powi(2) / d,
+                    past: omega * omega / d,
+                }
+            },
+        )
+    }
+}
+
+impl Implicit {
+    /// Attempts a step of `h` from `state`, ending at `end` (or `t + h`).
+    /// `at_floor` accepts the step whatever its convergence and energy (the
+    /// last resort then applies).
+    ///
+    /// # Errors
+    /// Assembly and solver errors; [`StepError::NoConvergence`] in strict
+    /// mode for a step accepted at the floor without converging.
+    pub(crate) fn attempt(
+        &mut self,
+        system: &System,
+        state: &mut State,
+        h: f64,
+        end: Option<f64>,
+        at_floor: bool,
+        report: &mut StepReport,
+    ) -> Result<Outcome, StepError> {
+        let saved_history = self.history;
+        let (solver, linearized) = (self.solver_for_topology(), self.is_linearized());
+        let previous = self.history.take(system, state);
+        let time = state.time();
+        let (x0, v0) = (state.positions(), state.velocities());
+        let c = Coefficients::new(self.settings.scheme, h, previous);
+        let beta_h = c.beta * h;
+        let masses = system.masses();
+        let Work {
+            b,
+            dv,
+            delta,
+            v,
+            x,
+            trial,
+            ahead,
+            look,
+            x_tilde,
+            v_tilde,
+            u,
+            inertia,
+            x_prev,
+            v_prev,
+            x_earlier,
+            pcg,
+            ..
+        } = &mut self.work;
+        for i in 0..x0.len() {
+            x_tilde[i] = c.current * x0[i] - c.past * x_prev[i];
+            v_tilde[i] = c.current * v0[i] - c.past * v_prev[i];
+            u[i] = x_tilde[i] - x0[i] + beta_h * v0[i];
+            inertia[i] = masses[i] * (v_tilde[i] - v0[i]);
+        }
+        if previous.is_none() {
+            dv.fill(Vec3::zeros());
+        }
+
+        let (compressed, strict) = (self.settings.compressed, self.settings.strict);
+        let quasi = match self.settings.minimizer {
+            Minimizer::QuasiNewton { history } => {
+                let contact = Contact::present(system);
+                self.quasi.begin(system, (beta_h, contact), history, time)?;
+                Some(&mut self.quasi)
+            }
+            _ => None,
+        };
+        let topology = topology(
+            &mut self.topology,
+            solver,
+            self.settings.amg_renewal,
+            system,
+        )?;
+        let solve = Solve {
+            system,
+            strict,
+            time,
+            forcing: 0.0,
+        };
+        let pinned = self.pins.begin(system, v0, time, h);
+        let mut contact = Contact::present(system).then(|| {
+            self.contact.begin(system, x0, time, h);
+            &mut self.contact
+        });
+        let has_contact = contact.is_some();
+        // Without contact, Baraff & Witkin's linearised step: the whole step
+        // when linearised, otherwise the first candidate for Newton's
+        // starting point; its assembly also freezes the dampers' directions
+        // at the step's start. With contact, and for the quasi-Newton step
+        // (which assembles no matrix and starts from vₙ), only the
+        // directions are frozen.
+        if has_contact || quasi.is_some() {
+            self.assembler
+                .freeze_directions(system, topology.pattern(), x0);
+        }
+        // The starting candidates: the first in `v`, a second in `trial`
+        // (none for the quasi-Newton step without contact).
+        let (lin_steps, second_start) = if let Some(contact) = contact.as_deref_mut() {
+            // Newton starts from the feasible positions of the step's start
+            // or, if lower in Φ, from the inertial predictor vₙ + z as far
+            // towards it as no pair comes closer than a tenth of its gap.
+            let (start, prescribed) = (contact.start(), &self.pins.prescribed);
+            for_each_row(v, |i, v| {
+                *v = if system.is_pinned(i) {
+                    v0[i] + prescribed[i]
+                } else {
+                    (start[i] - x_tilde[i]) / beta_h
+                };
+            });
+            for_each_row(trial, |i, t| *t = v0[i] + prescribed[i] - v[i]);
+            for_each_row(x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
+            for_each_row(ahead, |i, a| *a = beta_h * trial[i]);
+            let tau = contact.limit(system, x, ahead);
+            for_each_row(trial, |i, t| *t = v[i] + tau * *t);
+            (1, true)
+        } else if quasi.is_some() {
+            let prescribed = &self.pins.prescribed;
+            for_each_row(v, |i, v| *v = v0[i] + prescribed[i]);
+            (0, false)
+        } else {
+            let lin = Linearization {
+                positions: x0,
+                velocities: v0,
+                displacement: Some(u),
+                inertia,
+                beta_h,
+                compressed,
+                freeze_directions: true,
+            };
+            solve.assemble(&mut self.assembler, topology, &lin, b)?;
+            if pinned {
+                self.pins.prescribe(topology.matrix(), b);
+            }
+            solve.solve(topology, x0, b, dv, pcg, report)?;
+            let prescribed = &self.pins.prescribed;
+            for_each_row(v, |i, v| *v = v0[i] + dv[i] + prescribed[i]);
+            for_each_row(trial, |i, t| *t = v0[i] + prescribed[i]);
+            (0, true)
+        };
+        let mut newton = Newton {
+            system,
+            solve,
+            topology,
+            assembler: &mut self.assembler,
+            contact: contact.as_deref_mut(),
+            compressed,
+            x_tilde,
+            v_tilde,
+            beta_h,
+            x,
+            inertia,
+            b,
+            motion: u,
+            pcg,
+            report,
+            inexact: self.settings.inexact_newton,
+            hessian: CompressedSprings::Exact,
+            quasi,
+            evaluated_residual: false,
+        };
+        let outcome = if linearized && !has_contact {
+            newton::Outcome {
+                converged: true,
+                iterations: 1,
+                residual: 0.0,
+            }
+        } else {
+            // Newton starts where Φ is lower: at the first candidate (the
+            // linearised step's velocities, or the feasible start) or at the
+            // second (vₙ with the prescribed velocity changes applied, as far
+            // as contact allows). Every Newton step then lies in the free
+            // directions. With contact, the linearised step is one Newton
+            // step from there, bounded by collision detection.
+            let start = newton.start(v, second_start.then_some(&mut *trial));
+            let mut iterates = Iterates {
+                v,
+                delta,
+                trial,
+                ahead,
+                look,
+            };
+            let (iterations, tolerance) = if linearized {
+                (lin_steps, f64::INFINITY)
+            } else {
+                (
+                    self.settings.newton_iterations,
+                    self.settings.newton_tolerance,
+                )
+            };
+            let mut outcome = newton.minimize(&mut iterates, v0, start, iterations, tolerance)?;
+            if linearized {
+                outcome.converged = true;
+            }
+            outcome
+        };
+        for_each_row(x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
+
+        // The energy test, the contact barrier counted as a potential.
+        let (mut before, magnitude_before) = energy(system, x0, v0);
+        let (mut after, magnitude_after) = energy(system, x, v);
+        let two_step = c.past > 0.0;
+        let mut work = pin_work(system, x0, x);
+        if let Some(contact) = contact.as_deref_mut() {
+            before += contact.start_energy(system, x0, time);
+            after += contact.barrier_energy(system, x);
+            work += contact.obstacle_work(system, (x0, time), x, v);
+        }
+        let excess = after - before - work - rounding(magnitude_before.max(magnitude_after));
+        // Converged backward-Euler steps are held to the energy test; BDF2's
+        // two-step steps and the linearised step only report a gain. A gain
+        // that the kinetic energy absorbs by moving the velocities less
+        // than the stopping rule's tolerance passes (the `energy` module).
+        let tested = !linearized && !two_step;
+        let (factor, within_tolerance) = if excess > 0.0 {
+            let (factor, shift) = absorption(system, v, excess);
+            let scale = velocity_scale(system, v.iter().copied(), v0, beta_h);
+            (
+                factor,
+                outcome.converged && shift <= self.settings.newton_tolerance * scale,
+            )
+        } else {
+            (1.0, false)
+        };
+        report.newton_iterations += outcome.iterations;
+        report.newton_iterations_max = report.newton_iterations_max.max(outcome.iterations);
+        let error = self.settings.error_control.and_then(|control| {
+            let order = if two_step { 2 } else { 1 };
+            let earlier = self.earlier.unwrap_or(f64::NAN);
+            let past = [(&x_prev[..], previous?), (&x_earlier[..], earlier)];
+            let known = if self.earlier.is_some() { 2 } else { 1 };
+            control
+                .error(two_step, h, (x0, x), &past[..known])
+                .map(|err| (err, order))
+        });
+        let too_large = error.is_some_and(|(err, _)| err > 1.0);
+        if !linearized
+            && !at_floor
+            && (!outcome.converged || (tested && excess > 0.0 && !within_tolerance) || too_large)
+        {
+            self.history = saved_history;
+            return Ok(Outcome::Rejected { error });
+        }
+        report.newton_residual = report.newton_residual.max(outcome.residual);
+        if !outcome.converged {
+            if strict {
+                return Err(StepError::NoConvergence {
+                    time,
+                    iterations: outcome.iterations,
+                    residual: outcome.residual,
+                });
+            }
+            report.unconverged_steps += 1;
+        }
+        if excess > 0.0 {
+            report.energy_excess = report.energy_excess.max(excess);
+            if tested {
+                // The kinetic energy absorbs the gain: within the Newton
+                // tolerance, or at the floor as the last resort (all of
+                // the kinetic energy, if the gain is as large).
+                for_each_row(v, |i, v| {
+                    if !system.is_pinned(i) {
+                        *v *= factor;
+                    }
+                });
+                if !within_tolerance {
+                    report.energy_corrections += 1;
+                }
+            }
+        }
+        let touching = contact.map_or(0, |contact| contact.end_step(system, x));
+        state.commit(x, v, end.unwrap_or(time + h))?;
+        // The buffers swapped out of the state hold xₙ, vₙ: BDF2's next
+        // history, after xₙ₋₁ moves to the error estimate's.
+        if previous.is_some() {
+            std::mem::swap(x_earlier, x_prev);
+        }
+        self.earlier = previous;
+        std::mem::swap(x_prev, x);
+        std::mem::swap(v_prev, v);
+        self.history.record(system, state, h);
+        report.accepted_steps += 1;
+        // The pairs within the contact distance, and the particles the end
+        // of the step pushes out of an obstacle (none, as no iterate
+        // crosses one).
+        report.contacts = touching + system.end_step(state);
+        Ok(Outcome::Accepted {
+            easy: 3 * outcome.iterations <= self.settings.newton_iterations,
+            error,
+        })
+    }
+}

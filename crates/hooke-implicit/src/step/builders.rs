@@ -1,0 +1,202 @@
+//! [`Implicit`]'s builders and accessors: each sets or reads one of its
+//! [`Settings`](super::implicit::Settings).
+
+use hooke_core::{CompressedSprings, Integrator, ParameterError};
+
+use crate::linear::solver::{AmgRenewal, LinearSolver};
+use crate::step::comparison::Comparison;
+use crate::step::error_control::ErrorControl;
+use crate::step::implicit::Implicit;
+use crate::step::scheme::{Minimizer, Scheme};
+
+impl Implicit {
+    /// Uses `solver` for the linear systems.
+    ///
+    /// ```
+    /// use hooke_implicit::{Implicit, LinearSolver};
+    /// let integrator = Implicit::backward_euler().with_solver(LinearSolver::Cholesky);
+    /// ```
+    #[must_use]
+    pub fn with_solver(mut self, solver: LinearSolver) -> Self {
+        self.settings.solver = solver;
+        self.topology = None;
+        self.comparison = Comparison::default();
+        self
+    }
+
+    /// Whether an iterative linear solver (PCG, multigrid, lagged
+    /// Cholesky) may stop a Newton step's solve at the forcing term
+    /// `η = min(0.1, ½ λ_rel)` of the last relative Newton decrement `λ_rel`
+    /// when that is looser than its own tolerance (the default, `true`: an
+    /// inexact Newton iteration, Eisenstat & Walker 1996), or always solves
+    /// to its own tolerance (`false`). The first, linearised solve of a step
+    /// and direct solves are exact either way.
+    ///
+    /// ```
+    /// let exact = hooke_implicit::Implicit::backward_euler().with_inexact_newton(false);
+    /// ```
+    #[must_use]
+    pub fn with_inexact_newton(mut self, inexact: bool) -> Self {
+        self.settings.inexact_newton = inexact;
+        self
+    }
+
+    /// How much of its hierarchy [`LinearSolver::Amg`] renews from one
+    /// solve to the next (default [`AmgRenewal::EverySolve`]).
+    ///
+    /// ```
+    /// use hooke_implicit::{AmgRenewal, Implicit};
+    /// let lazy = Implicit::backward_euler().with_amg_renewal(AmgRenewal::SmootherOnly);
+    /// ```
+    #[must_use]
+    pub fn with_amg_renewal(mut self, renewal: AmgRenewal) -> Self {
+        self.settings.amg_renewal = renewal;
+        self.topology = None;
+        self.comparison = Comparison::default();
+        self
+    }
+
+    /// Takes up to `max_iterations` Newton solves per (sub)step, stopping
+    /// once the relative Newton decrement is at most `tolerance` (see the
+    /// type's docs); a (sub)step that does not converge within the cap is
+    /// rejected and retried in halves.
+    ///
+    /// ```
+    /// let integrator = hooke_implicit::Implicit::backward_euler().with_newton(8, 1e-6)?;
+    /// # Ok::<(), hooke_core::ParameterError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ParameterError`] for zero iterations or a tolerance that is not
+    /// positive and finite.
+    pub fn with_newton(
+        mut self,
+        max_iterations: usize,
+        tolerance: f64,
+    ) -> Result<Self, ParameterError> {
+        if max_iterations == 0 {
+            return Err(ParameterError::new(
+                self.name(),
+                "newton_iterations",
+                0.0,
+                "at least 1",
+            ));
+        }
+        if !(tolerance.is_finite() && tolerance > 0.0) {
+            return Err(ParameterError::new(
+                self.name(),
+                "newton_tolerance",
+                tolerance,
+                "positive and finite",
+            ));
+        }
+        self.settings.newton_iterations = max_iterations;
+        self.settings.newton_tolerance = tolerance;
+        Ok(self)
+    }
+
+    /// Takes Baraff & Witkin's linearised step (one solve, no line search,
+    /// no rejection) instead of the converged one; see the type's docs for
+    /// what it risks.
+    ///
+    /// ```
+    /// let integrator = hooke_implicit::Implicit::backward_euler().linearized();
+    /// ```
+    #[must_use]
+    pub fn linearized(self) -> Self {
+        self.with_minimizer(Minimizer::Linearized)
+    }
+
+    /// Whether the step is the linearised one.
+    #[must_use]
+    pub fn is_linearized(&self) -> bool {
+        self.settings.minimizer == Minimizer::Linearized
+    }
+
+    /// Minimises each step's `Φ` with `minimizer` (default
+    /// [`Minimizer::Newton`]); the iteration cap and tolerance of
+    /// [`Implicit::with_newton`] apply to each.
+    ///
+    /// ```
+    /// use hooke_implicit::{Implicit, Minimizer};
+    /// let lbfgs = Implicit::backward_euler().with_minimizer(Minimizer::quasi_newton());
+    /// ```
+    #[must_use]
+    pub fn with_minimizer(mut self, minimizer: Minimizer) -> Self {
+        self.settings.minimizer = minimizer;
+        self.topology = None;
+        self.comparison = Comparison::default();
+        self
+    }
+
+    /// How each step's `Φ` is minimised.
+    #[must_use]
+    pub fn minimizer(&self) -> Minimizer {
+        self.settings.minimizer
+    }
+
+    /// Lets a rejected step be cut in half at most `halvings` times (the
+    /// floor is `h / 2^halvings`); 0 accepts every step as it comes.
+    ///
+    /// ```
+    /// let integrator = hooke_implicit::Implicit::backward_euler().with_max_halvings(4);
+    /// ```
+    #[must_use]
+    pub fn with_max_halvings(mut self, halvings: u32) -> Self {
+        self.settings.max_halvings = halvings;
+        self
+    }
+
+    /// In strict mode a linear solve that stops at its iteration cap, or a
+    /// step accepted at the substep floor without converging, fails the step
+    /// with [`StepError::NoConvergence`](hooke_core::StepError::NoConvergence) naming the time and the residual;
+    /// otherwise (the default) the approximate solution is used and counted
+    /// in [`StepReport::unconverged_solves`](hooke_core::StepReport::unconverged_solves) and
+    /// [`StepReport::unconverged_steps`](hooke_core::StepReport::unconverged_steps).
+    #[must_use]
+    pub fn strict(mut self, strict: bool) -> Self {
+        self.settings.strict = strict;
+        self
+    }
+
+    /// How compressed springs' stiffness blocks are treated (clamped by
+    /// default, which keeps the matrix positive definite).
+    #[must_use]
+    pub fn with_compressed_springs(mut self, compressed: CompressedSprings) -> Self {
+        self.settings.compressed = compressed;
+        self
+    }
+
+    /// Chooses the substeps by their estimated local error (see
+    /// [`ErrorControl`] and the [`error_control`](crate::step::error_control)
+    /// module): each step the caller asks for is delivered whole, in as
+    /// many substeps as the tolerances need.
+    ///
+    /// ```
+    /// use hooke_implicit::{ErrorControl, Implicit};
+    /// let integrator = Implicit::bdf2().with_error_control(ErrorControl::new(1e-3, 1e-6)?);
+    /// # Ok::<(), hooke_core::ParameterError>(())
+    /// ```
+    #[must_use]
+    pub fn with_error_control(mut self, control: ErrorControl) -> Self {
+        self.settings.error_control = Some(control);
+        self
+    }
+
+    /// The scheme.
+    #[must_use]
+    pub fn scheme(&self) -> Scheme {
+        self.settings.scheme
+    }
+
+    /// The linear solver whose topology a step uses: the quasi-Newton step
+    /// solves with its own factor of `H₀` and needs the pattern and the
+    /// conditioning bounds only, so it asks for the one that builds no
+    /// factor or hierarchy.
+    pub(crate) fn solver_for_topology(&self) -> LinearSolver {
+        match self.settings.minimizer {
+            Minimizer::QuasiNewton { .. } => LinearSolver::Pcg(crate::PcgSettings::default()),
+            _ => self.settings.solver,
+        }
+    }
+}

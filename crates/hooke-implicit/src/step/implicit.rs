@@ -1,0 +1,273 @@
+//! [`Implicit`]: backward Euler and BDF2 on the assembled system.
+
+use hooke_core::{CompressedSprings, History};
+
+use crate::linear::solver::topology::Topology;
+use crate::linear::solver::{AmgRenewal, LinearSolver};
+use crate::minimize::assembly::Assembler;
+use crate::minimize::contact::Contact;
+use crate::minimize::quasi_newton::QuasiNewton;
+use crate::step::comparison::Comparison;
+use crate::step::conditioning::LongestStep;
+use crate::step::error_control::ErrorControl;
+use crate::step::pins::Pins;
+use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::work::Work;
+
+/// An implicit integrator on the assembled mass-spring system.
+///
+/// # The converged step (default)
+///
+/// A step of `h` solves the scheme's nonlinear equations
+/// `g(v) = M(v − ṽ) − βh f(x̃ + βh v, v) = 0` for the new velocity `v`
+/// (`x = x̃ + βh v`; backward Euler: `β = 1`, `x̃ = xₙ`, `ṽ = vₙ`; BDF2: see
+/// [`Scheme`]) by minimising the incremental potential whose gradient is `g`
+/// (Gast, Schroeder, Stomakhin, Jiang & Teran, *Optimization Integrator for
+/// Large Time Steps*, 2015; Li et al., *Incremental Potential Contact*,
+/// 2020):
+///
+/// ```text
+/// Φ(v) = ½‖v − ṽ‖²_M + V(x̃ + βh v) + βh R(v) + D(v)
+/// ```
+///
+/// with `V` the spring and gravitational potential, `R` the dampers'
+/// Rayleigh potential (directions frozen at the step's start) and `D` the
+/// friction's dissipation potential. Newton's method starts at whichever of
+/// `vₙ` and Baraff & Witkin's linearised solution (both with the velocity
+/// changes of pins and contacts applied) has the lower `Φ`, and solves
+/// `(M + βh C + β²h² K) δ = −g` with the exact spring and volume-element
+/// Hessians where that system is positive definite, and with compressed
+/// springs clamped and the elements' Hessians projected (each onto its
+/// positive part) where it is not, so that every step descends. Every iterate, the first one included, is
+/// accepted only through a line search that decreases `Φ` (Armijo,
+/// extended with a watchdog step and extrapolation; see the
+/// `newton` module). It stops when the Newton decrement `λ = √(δᵀAδ)`,
+/// which bounds the velocity error in the mass norm and whose square
+/// halved estimates how far `Φ` is above its minimum, is small against the
+/// step's velocity scale,
+///
+/// ```text
+/// λ ≤ ε · max(‖v + δ − vₙ‖_M, ‖v + δ‖_M, βh‖g‖√(Σmᵢ)),   ‖u‖_M = √(Σ mᵢ|uᵢ|²),
+/// ```
+///
+/// a rule without units that means the same at 10⁻² and 10¹² N/m or in a
+/// millimetre scene (default `ε` = [`Implicit::NEWTON_TOLERANCE`], cap
+/// [`Implicit::NEWTON_ITERATIONS`] linear solves; [`Implicit::with_newton`]),
+/// or when a full Newton step would lower `Φ` by less than the rounding of
+/// `Φ` itself — the precision floor that springs of 10¹² N/m reach, whose
+/// forces carry `k` times the rounding of their ends' coordinates.
+///
+/// With an iterative linear solver the Newton steps are solved inexactly,
+/// to the relative residual `η = min(0.1, ½ λ_rel)` of the last relative
+/// decrement where that is looser than the solver's own tolerance (an
+/// inexact Newton iteration; [`Implicit::with_inexact_newton`]).
+///
+/// # Substeps: conditioning, rejection and the energy test
+///
+/// The step's matrix has condition number relative to `M` of at most
+/// `1 + βhζ + β²h²ω²` (Gershgorin bounds of the damping and stiffness
+/// rates); steps longer than the one at which it reaches
+/// [`Implicit::MAX_CONDITION`] are taken in substeps, as rounding would
+/// otherwise erase the inertia of the soft modes from the solve.
+///
+/// A converged step of backward Euler on a convex energy cannot gain energy,
+/// but a spring's `½k(l − L)²` is not convex under compression, so each
+/// backward-Euler step is also tested: `E(xₙ₊₁, vₙ₊₁) ≤ E(xₙ, vₙ) + W`, with
+/// `E` the kinetic, elastic and gravitational energy of the free particles
+/// and `W` the work of scripted pins and moving obstacles. A gain `ΔE` that
+/// the free particles' kinetic energy `K` absorbs by scaling their
+/// velocities by `s = √(1 − ΔE/K)` with `(1 − s)√(2K) ≤ ε · scale` (the
+/// stopping rule's tolerance and velocity scale above: the scaled velocities
+/// are as close to the exact step as any converged ones) is absorbed so;
+/// the gains of a rolling body pressed onto a floor (the chord of each
+/// step releases its compression, a Bregman term of the non-convex
+/// potential) are of this kind, and shrink only as `h²` against the
+/// dissipation's `h` (the `energy` module). A step that fails the test
+/// otherwise, or whose Newton iteration does not converge within its cap,
+/// is rejected and retried as two substeps of half the size, down to a floor
+/// of `h / 2^k` (`k` = [`Implicit::MAX_HALVINGS`],
+/// [`Implicit::with_max_halvings`]); after a substep whose Newton iteration
+/// took at most a third of its cap, the size doubles again, up to the step
+/// the caller asked for, which is always delivered whole. BDF2 keeps its
+/// history across substeps of different sizes with its variable-step
+/// coefficients (step ratio `ω = h/hₙ₋₁ ≤ 2`). Its two-step steps are not
+/// held to the energy test: BDF2 lowers a norm of two consecutive states
+/// (Dahlquist's G-stability), not the energy of each, so even on the linear
+/// oscillator a correct step can gain a little energy; their gains are
+/// reported in [`StepReport::energy_excess`](hooke_core::StepReport::energy_excess).
+/// At the floor, a step is accepted as it is and counted in
+/// [`StepReport::unconverged_steps`](hooke_core::StepReport::unconverged_steps)
+/// (or, in [strict](Implicit::strict) mode, fails with
+/// [`StepError::NoConvergence`](hooke_core::StepError::NoConvergence)); if a
+/// backward-Euler step gained energy there, the last resort scales the free
+/// particles' velocities so that the kinetic energy absorbs the excess,
+/// counted in [`StepReport::energy_corrections`](hooke_core::StepReport::energy_corrections)
+/// with the excess in `energy_excess`. Nothing is silent.
+///
+/// With [`Implicit::with_error_control`] the substeps are chosen by their
+/// estimated local error instead (see the [`error_control`](crate::step::error_control)
+/// module); rejection for convergence and energy works as above.
+///
+/// # The quasi-Newton step
+///
+/// With [`Minimizer::QuasiNewton`] each iterate's direction is L-BFGS's,
+/// `δ = −H ∇Φ`, from the last `m` curvature pairs around the constant
+/// initial Hessian `H₀ = M + βh (γI + C₀) + β²h² L` (the `quasi_newton`
+/// module); the iteration starts at `vₙ` (with the pins' prescribed
+/// velocities), and the line search, the stopping rule, the energy test
+/// and the substeps are the ones above. Its decrement `λ = √|∇Φ·δ|` is
+/// measured in `H`'s norm, not the exact Hessian's: `H₀` bounds every
+/// spring's Hessian from above, so `λ` underestimates the exact decrement
+/// where the cloth is soft, and at the same `ε` the quasi-Newton step stops
+/// farther from the minimum than Newton's (the work-precision table in
+/// `benches/README.md` gives the errors). For the same reason its
+/// precision floor is the last iterate lowering `Φ` by no more than
+/// rounding, not the predicted decrease.
+///
+/// # The linearised step (Baraff & Witkin)
+///
+/// [`Implicit::linearized`] takes exactly Baraff & Witkin's step (*Large
+/// Steps in Cloth Simulation*, SIGGRAPH 1998): one linear solve at the
+/// current state,
+///
+/// ```text
+/// (M + βh C + β²h² K) Δv = M(ṽ − vₙ) + βh [fₙ − K (x̃ − xₙ + βh vₙ)],
+/// ```
+///
+/// for backward Euler `(M − h ∂f/∂v − h² ∂f/∂x) Δv = h (f₀ + h ∂f/∂x v₀)`,
+/// no line search, no rejection, no substeps. It is exact for linear
+/// springs, but it cannot see the stretch `δ²/2L` of a spring rotated by
+/// `δ` in one step: at large steps on stiff cloth it stores energy (up to
+/// thousands of times the initial energy on a 24×24 cloth at 10⁴ N/m and
+/// 0.1 s steps) before damping it out. Its energy gain is reported in
+/// `energy_excess`, never corrected.
+///
+/// ```
+/// use hooke_core::{Integrator, reference::Sheet};
+/// use hooke_implicit::Implicit;
+///
+/// // A stiff sheet at 30 steps per second, far beyond any explicit method.
+/// let system = Sheet { stiffness: 1e6, ..Sheet::new(10) }.system()?;
+/// let mut state = system.initial_state();
+/// let mut integrator = Implicit::backward_euler();
+/// for _ in 0..30 {
+///     let report = integrator.step(&system, &mut state, 1.0 / 30.0)?;
+///     assert_eq!(report.unconverged_steps, 0);
+/// }
+/// assert!(system.max_strain(&state)? < 0.01);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug)]
+pub struct Implicit {
+    pub(crate) settings: Settings,
+    /// The steps before, for BDF2 and the error estimates.
+    pub(crate) history: History,
+    /// The substep size to try first: the last accepted one, doubled.
+    pub(crate) substep: f64,
+    /// The size of the step before the last one, when the last one
+    /// continued from it (for BDF2's error estimate).
+    pub(crate) earlier: Option<f64>,
+    pub(crate) topology: Option<Topology>,
+    /// [`LinearSolver::Auto`]'s comparison on whole steps, while it lasts.
+    pub(crate) comparison: Comparison,
+    /// The longest substep the conditioning allows.
+    pub(crate) longest: LongestStep,
+    pub(crate) assembler: Assembler,
+    pub(crate) pins: Pins,
+    pub(crate) contact: Contact,
+    pub(crate) quasi: QuasiNewton,
+    pub(crate) work: Work,
+}
+
+/// What [`Implicit`]'s builders set: the scheme, the minimiser and its
+/// stopping rule, the linear solver, the substeps' limits and the error
+/// control. Everything else in [`Implicit`] is run-time state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Settings {
+    pub(crate) scheme: Scheme,
+    pub(crate) solver: LinearSolver,
+    pub(crate) minimizer: Minimizer,
+    pub(crate) newton_iterations: usize,
+    pub(crate) newton_tolerance: f64,
+    pub(crate) inexact_newton: bool,
+    pub(crate) amg_renewal: AmgRenewal,
+    pub(crate) max_halvings: u32,
+    pub(crate) strict: bool,
+    pub(crate) compressed: CompressedSprings,
+    pub(crate) error_control: Option<ErrorControl>,
+}
+
+impl Implicit {
+    /// Backward Euler with the automatic solver choice
+    /// ([`LinearSolver::Auto`]: sparse Cholesky on small systems, otherwise
+    /// whichever solver a timed trial finds fastest), converged Newton steps (at most
+    /// [`Implicit::NEWTON_ITERATIONS`] solves, tolerance
+    /// [`Implicit::NEWTON_TOLERANCE`]), step rejection down to `h/2¹⁰`,
+    /// clamped compressed springs, fixed substeps, non-strict.
+    #[must_use]
+    pub fn backward_euler() -> Self {
+        Self::new(Scheme::BackwardEuler)
+    }
+
+    /// BDF2 with the same defaults as [`Implicit::backward_euler`].
+    #[must_use]
+    pub fn bdf2() -> Self {
+        Self::new(Scheme::Bdf2)
+    }
+
+    /// The default cap on Newton's linear solves per (sub)step. Stiff
+    /// cloth swinging through large angles needs tens of them: at 10⁸ N/m
+    /// and 0.1 s steps a 24×24 cloth takes 50–100.
+    pub const NEWTON_ITERATIONS: usize = 100;
+    /// The default relative Newton tolerance `ε` (a relative error of the
+    /// velocities in the mass norm; `Φ` then lies about `ε²` times twice the
+    /// kinetic-energy scale above its minimum). `10⁻⁴` rather than tighter:
+    /// where buckling cloth makes the exact Hessian indefinite, Newton with
+    /// clamped compressed springs converges only linearly, and a step of a
+    /// 100×100 cloth swinging from two pins took 118 Newton iterations
+    /// (151 solves) and a rejection to reach `10⁻⁶`, `Φ` moving by 10⁻⁹ of
+    /// itself at each, against 8 iterations (9 solves) to reach `10⁻⁴`. The extreme-stiffness guarantees of
+    /// `tests/implicit_robust.rs` hold at `10⁻⁴`; at `10⁻³` a step at
+    /// 10¹² N/m and 1 s reaches the halving floor and needs an energy
+    /// correction.
+    pub const NEWTON_TOLERANCE: f64 = 1e-4;
+    /// The default number of halvings a step may be cut by.
+    pub const MAX_HALVINGS: u32 = 10;
+    /// The largest condition number `κ(h) = 1 + βhζ + β²h²ω²` of a step's
+    /// matrix relative to the mass matrix (`ω²`, `ζ`: Gershgorin bounds of
+    /// the stiffness and damping rates) at which a step is taken whole;
+    /// longer steps are taken in substeps. At `κ = 10¹⁴` a solve keeps the
+    /// soft modes' inertia to about 2 %.
+    pub const MAX_CONDITION: f64 = 1e14;
+
+    /// An integrator of the given scheme with the defaults.
+    #[must_use]
+    pub fn new(scheme: Scheme) -> Self {
+        Self {
+            settings: Settings {
+                scheme,
+                solver: LinearSolver::default(),
+                minimizer: Minimizer::Newton,
+                newton_iterations: Self::NEWTON_ITERATIONS,
+                newton_tolerance: Self::NEWTON_TOLERANCE,
+                inexact_newton: true,
+                amg_renewal: AmgRenewal::default(),
+                max_halvings: Self::MAX_HALVINGS,
+                strict: false,
+                compressed: CompressedSprings::Clamped,
+                error_control: None,
+            },
+            history: History::default(),
+            substep: f64::INFINITY,
+            earlier: None,
+            topology: None,
+            comparison: Comparison::default(),
+            longest: LongestStep::default(),
+            assembler: Assembler::default(),
+            pins: Pins::default(),
+            contact: Contact::default(),
+            quasi: QuasiNewton::default(),
+            work: Work::default(),
+        }
+    }
+}

@@ -1,0 +1,120 @@
+//! [`Implicit`]'s step: the caller's step delivered whole, in substeps that
+//! shrink on rejection and grow back, within the conditioning limit.
+
+use std::time::Instant;
+
+use hooke_core::{Integrator, State, StepError, StepReport, System, Vec3, check_step};
+
+use crate::minimize::contact::Contact;
+use crate::step::attempt::Outcome;
+use crate::step::error_control::step_factor;
+use crate::step::implicit::Implicit;
+use crate::step::scheme::Scheme;
+
+impl Integrator for Implicit {
+    fn step(
+        &mut self,
+        system: &System,
+        state: &mut State,
+        dt: f64,
+    ) -> Result<StepReport, StepError> {
+        check_step(system, state, dt)?;
+        if Contact::present(system) {
+            self.contact.push_out(system, state);
+        }
+        let clock = Instant::now();
+        let n = state.len();
+        let w = &mut self.work;
+        for buffer in [
+            &mut w.b,
+            &mut w.dv,
+            &mut w.delta,
+            &mut w.v,
+            &mut w.x,
+            &mut w.trial,
+            &mut w.ahead,
+            &mut w.look,
+            &mut w.x_tilde,
+            &mut w.v_tilde,
+            &mut w.u,
+            &mut w.inertia,
+            &mut w.x_prev,
+            &mut w.v_prev,
+            &mut w.x_earlier,
+            &mut w.x_start,
+            &mut w.v_start,
+        ] {
+            buffer.resize(n, Vec3::zeros());
+        }
+        w.x_start.copy_from_slice(state.positions());
+        w.v_start.copy_from_slice(state.velocities());
+        let (start, end) = (state.time(), state.time() + dt);
+        let longest = if self.is_linearized() {
+            f64::INFINITY
+        } else {
+            self.longest.get(system, Self::MAX_CONDITION)
+        };
+        let floor = (dt / f64::from(self.settings.max_halvings).exp2()).min(longest);
+        let mut h = self.substep.min(dt).min(longest);
+        // Error control starts afresh at the floor: the first substep has
+        // no past to estimate its error from.
+        if self.settings.error_control.is_some() && !self.history.continues(system, state) {
+            h = floor;
+        }
+        let mut report = StepReport::default();
+        loop {
+            let remaining = end - state.time();
+            // The last substep ends exactly at the caller's time.
+            let last = h >= remaining * (1.0 - 1e-12);
+            let size = if last { remaining } else { h };
+            let at_floor = self.is_linearized() || size <= floor * (1.0 + 1e-12);
+            let outcome = self.attempt(
+                system,
+                state,
+                size,
+                last.then_some(end),
+                at_floor,
+                &mut report,
+            );
+            match outcome {
+                Ok(Outcome::Accepted { easy, error }) => {
+                    let factor = match error {
+                        Some((err, order)) => {
+                            let factor = step_factor(err, order, true);
+                            if easy { factor } else { factor.min(1.0) }
+                        }
+                        None if easy => 2.0,
+                        None => 1.0,
+                    };
+                    h = (factor * size.max(h.min(remaining))).clamp(floor, dt.min(longest));
+                    self.substep = h;
+                    if last {
+                        break;
+                    }
+                }
+                Ok(Outcome::Rejected { error }) => {
+                    report.rejected_steps += 1;
+                    let factor = error.map_or(0.5, |(err, order)| step_factor(err, order, false));
+                    h = (factor * size).max(floor);
+                }
+                Err(error) => {
+                    let (x, v) = (state.positions_mut(), &self.work.v_start);
+                    x.copy_from_slice(&self.work.x_start);
+                    state.velocities_mut().copy_from_slice(v);
+                    state.set_time(start);
+                    return Err(error);
+                }
+            }
+        }
+        self.comparison
+            .step_ended(self.topology.as_mut(), clock.elapsed(), dt);
+        Ok(report)
+    }
+
+    fn name(&self) -> &'static str {
+        match self.settings.scheme {
+            Scheme::BackwardEuler => "backward-euler",
+            Scheme::Bdf2 => "bdf2",
+        }
+    }
+}
