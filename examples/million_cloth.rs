@@ -7,14 +7,17 @@
 //! process's peak resident memory (`VmHWM` of `/proc/self/status`) per
 //! particle.
 //!
-//! `cargo run --release --example million_cloth -- [N] [STEPS]`
+//! `cargo run --release --example million_cloth -- [N] [STEPS] [STEP] [TOLERANCE] [SELF]`
 //!
-//! `N` = 1000 (a million particles) and `STEPS` = 2 by default.
+//! `N` = 1000 (a million particles) and `STEPS` = 2 by default; `STEP` is
+//! `newton` (the default) or `quasi-newton`, `TOLERANCE` the relative
+//! Newton tolerance (the integrator's default if not given), `SELF` `on`
+//! (the default) or `off` for the cloth's self-collision.
 #![allow(clippy::print_stdout)] // printing the measurements is this program's job
 
 use std::time::Instant;
 
-use hooke::implicit::Implicit;
+use hooke::implicit::{Implicit, Minimizer};
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Mass, Springs};
 
@@ -22,6 +25,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let side: usize = args.next().map_or(Ok(1000), |a| a.parse())?;
     let steps: usize = args.next().map_or(Ok(2), |a| a.parse())?;
+    let minimizer = match args.next().as_deref() {
+        None | Some("newton") => Minimizer::Newton,
+        Some("quasi-newton") => Minimizer::quasi_newton(),
+        Some(other) => return Err(format!("unknown step {other:?}").into()),
+    };
+    let tolerance: f64 = args
+        .next()
+        .map_or(Ok(Implicit::NEWTON_TOLERANCE), |a| a.parse())?;
+    let self_collision = match args.next().as_deref() {
+        None | Some("on") => true,
+        Some("off") => false,
+        Some(other) => return Err(format!("SELF is on or off, not {other:?}").into()),
+    };
     let system = Cloth::grid(side, side)
         .mass(Mass::Total(1.0))
         .stretch(Springs::per_spring(5000.0).damping(0.05))
@@ -29,10 +45,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .bend(Springs::per_spring(50.0))
         .pin_corners([Corner::TopLeft, Corner::TopRight])
         .build()?
+        .self_collision(self_collision)
         .system([0.0, -9.81, 0.0])?;
     let particles = system.particle_count();
     let mut state = system.initial_state();
-    let mut integrator = Implicit::backward_euler();
+    let mut integrator = Implicit::backward_euler()
+        .with_minimizer(minimizer)
+        .with_newton(Implicit::NEWTON_ITERATIONS, tolerance)?;
     for step in 0..steps {
         let started = Instant::now();
         let report = integrator.step(&system, &mut state, 1.0 / 60.0)?;
