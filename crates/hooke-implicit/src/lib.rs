@@ -36,8 +36,9 @@
 //! Instead of Newton's method, [`Minimizer::QuasiNewton`] minimises the
 //! same `Φ` by L-BFGS with the springs' prefactored stiffness Laplacian as
 //! its initial Hessian (Liu, Bouaziz & Kavan 2017): no 3×3-block matrix,
-//! one gradient and three pairs of triangular solves an iteration, the
-//! same line search, stopping rule, energy test and substeps.
+//! three pairs of triangular solves and about two passes over the springs
+//! (each giving `Φ` and its gradient) an iteration, the same line search,
+//! stopping rule, energy test and substeps.
 //!
 //! Beside [`Implicit`], [`FastMassSpring`] takes backward-Euler steps the
 //! way Liu et al. (2013) do: a fixed number of local/global iterations on a
