@@ -6,15 +6,16 @@
 //! rejected substeps, unconverged steps, energy corrections and wall time
 //! per step.
 //!
-//! `cargo run --release --example extreme_table -- [STEPS] [linearized] [k=K] [dt=DT]`
+//! `cargo run --release --example extreme_table -- [STEPS] [linearized | quasi-newton] [k=K] [dt=DT]`
 //!
 //! `STEPS` steps per cell (default 3); `linearized` takes Baraff & Witkin's
-//! step instead of the converged one; `k=` and `dt=` run one row or column.
+//! step instead of the converged one, `quasi-newton` converges it by L-BFGS
+//! instead of Newton's method; `k=` and `dt=` run one row or column.
 #![allow(clippy::print_stdout)] // printing the table is this program's job
 
 use std::time::Instant;
 
-use hooke::implicit::Implicit;
+use hooke::implicit::{Implicit, Minimizer};
 use hooke::prelude::*;
 
 /// The table's stiffnesses, N/m, and steps, s.
@@ -23,11 +24,13 @@ const STEPS: [f64; 4] = [1e-4, 1e-2, 0.1, 1.0];
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut steps = 3;
-    let mut linearized = false;
+    let mut minimizer = Minimizer::Newton;
     let (mut only_k, mut only_dt) = (None, None);
     for arg in std::env::args().skip(1) {
         if arg == "linearized" {
-            linearized = true;
+            minimizer = Minimizer::Linearized;
+        } else if arg == "quasi-newton" {
+            minimizer = Minimizer::quasi_newton();
         } else if let Some(k) = arg.strip_prefix("k=") {
             only_k = Some(k.parse::<f64>()?);
         } else if let Some(dt) = arg.strip_prefix("dt=") {
@@ -51,10 +54,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
             .system()?;
             for dt in only_dt.map_or(STEPS.to_vec(), |dt| vec![dt]) {
-                let mut integrator = scheme();
-                if linearized {
-                    integrator = integrator.linearized();
-                }
+                let mut integrator = scheme().with_minimizer(minimizer);
                 let mut state = system.initial_state();
                 let initial = system.energy(&state)?.total();
                 let (mut peak, mut total) = (f64::NEG_INFINITY, StepReport::default());
