@@ -44,12 +44,16 @@ fn variants() -> Vec<Variant> {
     let mut all: Vec<Variant> = Vec::new();
     let newton = |tol: f64| {
         move || -> Box<dyn Integrator> {
-            Box::new(Implicit::backward_euler().with_newton(100, tol).unwrap())
+            Box::new(
+                Implicit::backward_euler()
+                    .with_newton(Implicit::NEWTON_ITERATIONS, tol)
+                    .unwrap(),
+            )
         }
     };
     all.push((
-        "Newton, default (1e-4, auto)".into(),
-        Box::new(newton(1e-4)),
+        format!("Newton, default ({:e}, auto)", Implicit::NEWTON_TOLERANCE),
+        Box::new(|| Box::new(Implicit::backward_euler())),
     ));
     all.push(("Newton, 1e-2".into(), Box::new(newton(1e-2))));
     all.push((

@@ -2,7 +2,7 @@
 //! fixed-step RK4 where the stiffness changes in time, and fails cleanly.
 
 use approx::assert_abs_diff_eq;
-use hooke::core::ParameterError;
+use hooke::core::{Parameter, ParameterError};
 use hooke::prelude::*;
 
 /// With `rtol = atol = tol` and `|y| ≤ 1` each component is allowed an error
@@ -125,10 +125,10 @@ fn takes_fewer_steps_than_rk4_for_the_same_error_when_stiffness_changes() {
 #[test]
 fn rejects_invalid_tolerances() {
     for (rtol, atol, parameter) in [
-        (-1e-6, 1e-6, "rtol"),
-        (f64::NAN, 1e-6, "rtol"),
-        (1e-6, f64::INFINITY, "atol"),
-        (0.0, 0.0, "atol"),
+        (-1e-6, 1e-6, Parameter::Rtol),
+        (f64::NAN, 1e-6, Parameter::Rtol),
+        (1e-6, f64::INFINITY, Parameter::Atol),
+        (0.0, 0.0, Parameter::Atol),
     ] {
         let error: ParameterError = DormandPrince::new(rtol, atol).unwrap_err();
         assert_eq!(error.parameter, parameter);

@@ -1,7 +1,7 @@
 //! Implicit steps that cannot be taken fail with typed errors naming the time
 //! and, where known, the particle, and leave the state as it was.
 
-use hooke::core::{CompressedSprings, ParameterError};
+use hooke::core::{CompressedSprings, Parameter, ParameterError};
 use hooke::implicit::{Implicit, LinearSolver, PcgSettings};
 use hooke::prelude::*;
 
@@ -123,17 +123,17 @@ fn an_unconverged_solve_fails_only_in_strict_mode() {
 #[test]
 fn invalid_settings_name_the_parameter() {
     let pcg = |tolerance: f64, cap: usize| PcgSettings::new(tolerance, cap).unwrap_err().parameter;
-    assert_eq!(pcg(0.0, 10), "tolerance");
-    assert_eq!(pcg(1.0, 10), "tolerance");
-    assert_eq!(pcg(f64::NAN, 10), "tolerance");
-    assert_eq!(pcg(1e-6, 0), "max_iterations");
+    assert_eq!(pcg(0.0, 10), Parameter::Tolerance);
+    assert_eq!(pcg(1.0, 10), Parameter::Tolerance);
+    assert_eq!(pcg(f64::NAN, 10), Parameter::Tolerance);
+    assert_eq!(pcg(1e-6, 0), Parameter::MaxIterations);
     let newton = |iterations: usize, tolerance: f64| -> ParameterError {
         Implicit::bdf2()
             .with_newton(iterations, tolerance)
             .unwrap_err()
     };
-    assert_eq!(newton(0, 1e-3).parameter, "newton_iterations");
-    assert_eq!(newton(3, 0.0).parameter, "newton_tolerance");
+    assert_eq!(newton(0, 1e-3).parameter, Parameter::NewtonIterations);
+    assert_eq!(newton(3, 0.0).parameter, Parameter::NewtonTolerance);
     assert_eq!(
         newton(3, f64::INFINITY).to_string(),
         "bdf2: newton_tolerance must be positive and finite, got inf"

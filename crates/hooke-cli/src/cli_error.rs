@@ -62,7 +62,9 @@ pub enum CliError {
     /// `--pcg-tolerance` with a `--solver` that is not a PCG iteration.
     #[error(
         "--pcg-tolerance: solver \"{solver}\" takes no tolerance; the PCG solvers do: {}",
-        hooke_scenes::SolverSpec::iterative_names().join(", ")
+        hooke_implicit::LinearSolver::iterative_names()
+            .collect::<Vec<_>>()
+            .join(", ")
     )]
     PcgTolerance {
         /// The solver given.

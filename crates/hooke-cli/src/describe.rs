@@ -3,8 +3,8 @@
 use std::fmt::Write;
 
 use hooke_core::{Obstacle, Path, System, Vec3};
-use hooke_implicit::{AutoSettings, Minimizer};
-use hooke_scenes::{IntegratorSpec, Scene, SceneBody, SolverSpec};
+use hooke_implicit::{AutoSettings, LinearSolver, Minimizer};
+use hooke_scenes::{IntegratorSpec, Scene, SceneBody};
 
 use crate::cli_error::CliError;
 use crate::runner::check_timing;
@@ -235,30 +235,29 @@ fn integrator_parameters(spec: &IntegratorSpec, particles: usize) -> String {
             };
             let strict = if strict { ", strict" } else { "" };
             let solver = match solver {
-                SolverSpec::Cholesky => "sparse Cholesky".to_owned(),
-                SolverSpec::Auto if particles < AutoSettings::DEFAULT.trial_particles => format!(
+                LinearSolver::Cholesky => "sparse Cholesky".to_owned(),
+                LinearSolver::Auto if particles < AutoSettings::DEFAULT.trial_particles => format!(
                     "auto: sparse Cholesky (below {} particles)",
                     AutoSettings::DEFAULT.trial_particles
                 ),
-                SolverSpec::Auto => "auto: sparse Cholesky, multigrid PCG or block-Jacobi PCG, \
+                LinearSolver::Auto => "auto: sparse Cholesky, multigrid PCG or block-Jacobi PCG, \
                      whichever a timed trial at the first solve (and, when two come close, \
                      the next two steps) finds fastest"
                     .to_owned(),
-                SolverSpec::Amg {
-                    tolerance,
-                    max_iterations,
-                } => {
-                    format!("multigrid PCG to {tolerance:e} in at most {max_iterations} iterations")
-                }
-                SolverSpec::Pcg {
-                    tolerance,
-                    max_iterations,
-                } => format!("PCG to {tolerance:e} in at most {max_iterations} iterations"),
-                SolverSpec::LaggedCholesky {
-                    tolerance,
-                    max_iterations,
-                } => format!(
-                    "PCG with a lagged Cholesky factor to {tolerance:e} in at most {max_iterations} iterations"
+                LinearSolver::Amg(pcg) => format!(
+                    "multigrid PCG to {:e} in at most {} iterations",
+                    pcg.tolerance(),
+                    pcg.max_iterations()
+                ),
+                LinearSolver::Pcg(pcg) => format!(
+                    "PCG to {:e} in at most {} iterations",
+                    pcg.tolerance(),
+                    pcg.max_iterations()
+                ),
+                LinearSolver::LaggedCholesky(pcg) => format!(
+                    "PCG with a lagged Cholesky factor to {:e} in at most {} iterations",
+                    pcg.tolerance(),
+                    pcg.max_iterations()
                 ),
             };
             match minimizer {

@@ -110,4 +110,4 @@ pub use describe::describe;
 pub use run_options::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE};
 pub use runner::run;
 pub use scene_source::DEFAULT_SCENE;
-pub use summary::Summary;
+pub use summary::{SolverName, Summary};

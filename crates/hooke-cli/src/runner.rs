@@ -171,7 +171,7 @@ pub fn run(
         linear_iterations_mean: per_step(total.linear_iterations),
         newton_iterations_mean: per_step(total.newton_iterations),
         linear_solves: total.linear_solves,
-        linear_solver: (!total.linear_solver.is_empty()).then(|| total.linear_solver.to_owned()),
+        linear_solver: (!total.linear_solver.is_empty()).then_some(total.linear_solver),
         unconverged_solves: total.unconverged_solves,
         substeps: total.accepted_steps,
         rejected_steps: total.rejected_steps,

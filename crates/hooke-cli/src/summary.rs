@@ -2,7 +2,9 @@
 
 use std::path::PathBuf;
 
-use serde::{Deserialize, Serialize};
+use hooke_implicit::LinearSolver;
+use serde::de::Error as _;
+use serde::{Deserialize, Deserializer, Serialize};
 
 /// The measurements of one run, written to `summary.json` in the output
 /// directory.
@@ -58,10 +60,12 @@ pub struct Summary {
     pub newton_iterations_mean: Option<f64>,
     /// Linear systems solved.
     pub linear_solves: usize,
-    /// The linear solver of the last solve (`"cholesky"`, `"pcg"`,
+    /// The linear solver of the last solve, its name in the one table of
+    /// solver names, [`LinearSolver::NAMES`] (`"cholesky"`, `"pcg"`,
     /// `"amg"`: what `solver = "auto"` chose); `None` if the integrator
     /// solves no linear systems.
-    pub linear_solver: Option<String>,
+    #[serde(default, deserialize_with = "solver_name")]
+    pub linear_solver: Option<SolverName>,
     /// Linear solves that stopped at their iteration cap.
     pub unconverged_solves: usize,
     /// Steps (or substeps) the integrator accepted: more than
@@ -153,6 +157,23 @@ pub struct Summary {
     pub error: Option<String>,
     /// The directory the files were written to.
     pub out: PathBuf,
+}
+
+/// A linear solver's name, an entry of [`LinearSolver::NAMES`]. (A name
+/// for the type, so that serde reads it as the table's entry instead of
+/// borrowing it from the input.)
+pub type SolverName = &'static str;
+
+/// A solver's name read as its entry of [`LinearSolver::NAMES`]; a name
+/// not in the table is an error.
+fn solver_name<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Option<SolverName>, D::Error> {
+    Option::<String>::deserialize(deserializer)?
+        .map(|name| {
+            LinearSolver::from_name(&name)
+                .map(LinearSolver::name)
+                .ok_or_else(|| D::Error::unknown_variant(&name, &LinearSolver::NAMES))
+        })
+        .transpose()
 }
 
 /// The median of `values` (the mean of the middle two for an even count),

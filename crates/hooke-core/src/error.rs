@@ -1,5 +1,6 @@
 //! Errors: [`BuildError`] for a system that fails validation, [`StepError`]
-//! for a step that cannot be taken or would leave a non-finite state.
+//! for a step that cannot be taken or would leave a non-finite state,
+//! [`ParameterError`] for an integrator or solver setting out of range.
 
 use thiserror::Error;
 
@@ -261,14 +262,79 @@ pub enum StepError {
     },
 }
 
+/// Which integrator or solver setting a [`ParameterError`] is about; it
+/// displays as its [`Parameter::name`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Parameter {
+    /// Dormand–Prince's relative tolerance, `rtol`.
+    Rtol,
+    /// Dormand–Prince's absolute tolerance, `atol`.
+    Atol,
+    /// The fast mass-spring method's local/global iterations per step.
+    Iterations,
+    /// A PCG solve's relative residual tolerance.
+    Tolerance,
+    /// A PCG solve's iteration cap.
+    MaxIterations,
+    /// The implicit step's cap on Newton iterations.
+    NewtonIterations,
+    /// The implicit step's relative Newton tolerance.
+    NewtonTolerance,
+    /// Error control's relative tolerance.
+    RelativeTolerance,
+    /// Error control's absolute tolerance.
+    AbsoluteTolerance,
+    /// Multigrid's strength-of-connection threshold.
+    Strength,
+    /// Multigrid's threshold of the matrix that smooths the finest
+    /// prolongator.
+    Filter,
+    /// Multigrid's Chebyshev degree of each smoothing sweep.
+    SmootherDegree,
+    /// Multigrid's Chebyshev degree on the finest level.
+    FineDegree,
+    /// The largest number of unknowns multigrid solves directly.
+    CoarseUnknowns,
+}
+
+impl Parameter {
+    /// The setting's name in messages: `"rtol"`, `"newton_tolerance"`,
+    /// `"relative tolerance"` …
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Rtol => "rtol",
+            Self::Atol => "atol",
+            Self::Iterations => "iterations",
+            Self::Tolerance => "tolerance",
+            Self::MaxIterations => "max_iterations",
+            Self::NewtonIterations => "newton_iterations",
+            Self::NewtonTolerance => "newton_tolerance",
+            Self::RelativeTolerance => "relative tolerance",
+            Self::AbsoluteTolerance => "absolute tolerance",
+            Self::Strength => "strength",
+            Self::Filter => "filter",
+            Self::SmootherDegree => "smoother_degree",
+            Self::FineDegree => "fine_degree",
+            Self::CoarseUnknowns => "coarse_unknowns",
+        }
+    }
+}
+
+impl std::fmt::Display for Parameter {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// An integrator or solver parameter outside its valid range.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[error("{integrator}: {parameter} must be {requirement}, got {value}")]
 pub struct ParameterError {
     /// The integrator's or solver's name.
     pub integrator: &'static str,
-    /// The parameter's name.
-    pub parameter: &'static str,
+    /// The parameter.
+    pub parameter: Parameter,
     /// The value given.
     pub value: f64,
     /// What the value must be.
@@ -281,7 +347,7 @@ impl ParameterError {
     #[must_use]
     pub fn new(
         integrator: &'static str,
-        parameter: &'static str,
+        parameter: Parameter,
         value: f64,
         requirement: &'static str,
     ) -> Self {

@@ -75,7 +75,7 @@ mod volume;
 pub use builder::{SpringEntry, SurfaceEntry, SystemBuilder};
 pub use contact::respond_to_contact;
 pub use energy::Energy;
-pub use error::{BuildError, ParameterError, Quantity, SpringParameter, StepError};
+pub use error::{BuildError, Parameter, ParameterError, Quantity, SpringParameter, StepError};
 pub use forces::{ForceEvaluator, PARALLEL_MIN_SPRINGS, Parallelism};
 pub use integrator::{Integrator, StepReport, check_step};
 pub use logs::{EnergyLog, EnergySample, StrainLog};

@@ -1,8 +1,8 @@
 //! Adaptive-step Dormand–Prince 5(4).
 
 use hooke_core::{
-    ForceEvaluator, Integrator, ParameterError, State, StepBuffers, StepError, StepReport, System,
-    Vec3,
+    ForceEvaluator, Integrator, Parameter, ParameterError, State, StepBuffers, StepError,
+    StepReport, System, Vec3,
 };
 
 use crate::ops::combine;
@@ -162,7 +162,7 @@ impl DormandPrince {
     /// [`ParameterError`] if a tolerance is negative or not finite, or both
     /// are zero.
     pub fn new(rtol: f64, atol: f64) -> Result<Self, ParameterError> {
-        for (name, value) in [("rtol", rtol), ("atol", atol)] {
+        for (name, value) in [(Parameter::Rtol, rtol), (Parameter::Atol, atol)] {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(ParameterError::new(
                     Self::NAME,
@@ -175,7 +175,7 @@ impl DormandPrince {
         if rtol == 0.0 && atol == 0.0 {
             return Err(ParameterError::new(
                 Self::NAME,
-                "atol",
+                Parameter::Atol,
                 atol,
                 "positive when rtol is zero",
             ));

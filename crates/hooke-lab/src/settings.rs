@@ -3,15 +3,15 @@
 
 use hooke_core::{Integrator, ParameterError};
 use hooke_explicit::DormandPrince;
-use hooke_implicit::{Implicit, Minimizer};
-use hooke_scenes::{IntegratorSpec, Method, SolverSpec};
+use hooke_implicit::{Implicit, LinearSolver, Minimizer};
+use hooke_scenes::{IntegratorSpec, Method};
 
 /// The parameters the lab gives the methods that have any: the implicit
 /// methods' solver and Newton iterations, Dormand–Prince's tolerance.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
-    /// The implicit methods' linear solver.
-    pub solver: SolverSpec,
+    /// The implicit methods' linear solver, with its settings.
+    pub solver: LinearSolver,
     /// How the implicit steps minimise their incremental potential.
     pub minimizer: Minimizer,
     /// Cap on Newton iterations per implicit (sub)step.
@@ -28,7 +28,7 @@ impl Default for Settings {
     /// (10⁻⁶) as both of its tolerances.
     fn default() -> Self {
         Self {
-            solver: SolverSpec::Cholesky,
+            solver: LinearSolver::Cholesky,
             minimizer: Minimizer::Newton,
             newton_iterations: Implicit::NEWTON_ITERATIONS,
             newton_tolerance: Implicit::NEWTON_TOLERANCE,
@@ -126,6 +126,6 @@ mod tests {
             .build(Method::DormandPrince, Some(-1.0))
             .err()
             .unwrap();
-        assert_eq!(error.parameter, "rtol");
+        assert_eq!(error.parameter, hooke_core::Parameter::Rtol);
     }
 }

@@ -1,168 +1,10 @@
-//! [`IntegratorSpec`]: which [`Method`] a scene runs, with its parameters,
-//! and the [`SolverSpec`] of the implicit ones.
+//! [`IntegratorSpec`]: which [`Method`] a scene runs, with its parameters.
 
 use hooke_core::{Integrator, ParameterError};
 use hooke_explicit::{DormandPrince, ExplicitMethod};
-use hooke_implicit::{
-    ErrorControl, FastMassSpring, Implicit, LinearSolver, Minimizer, PcgSettings, Scheme,
-};
+use hooke_implicit::{ErrorControl, FastMassSpring, Implicit, LinearSolver, Minimizer, Scheme};
 
 use crate::Method;
-
-/// The linear solver of an implicit integrator.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SolverSpec {
-    /// Filtered PCG to a relative residual `tolerance`, at most
-    /// `max_iterations` iterations.
-    Pcg {
-        /// Relative residual to stop at.
-        tolerance: f64,
-        /// Iteration cap.
-        max_iterations: usize,
-    },
-    /// Sparse Cholesky.
-    Cholesky,
-    /// Filtered PCG preconditioned by smoothed-aggregation multigrid, to a
-    /// relative residual `tolerance`, at most `max_iterations` iterations.
-    Amg {
-        /// Relative residual to stop at.
-        tolerance: f64,
-        /// Iteration cap.
-        max_iterations: usize,
-    },
-    /// Filtered PCG preconditioned by a lagged Cholesky factor, to a
-    /// relative residual `tolerance`, at most `max_iterations` iterations.
-    LaggedCholesky {
-        /// Relative residual to stop at.
-        tolerance: f64,
-        /// Iteration cap.
-        max_iterations: usize,
-    },
-    /// Chosen by measured cost ([`LinearSolver::Auto`]): sparse Cholesky
-    /// below [`AutoSettings::trial_particles`](hooke_implicit::AutoSettings::trial_particles) particles; from there
-    /// on the first solve times the factorization (unless its predicted
-    /// factor is too large), multigrid PCG and block-Jacobi PCG on the
-    /// step's matrix, and keeps the fastest, an iterative one only if it
-    /// clearly beats the factorization. When the two come close, the next
-    /// two steps run one each and the faster per second simulated serves
-    /// the rest of the run. An iterative choice whose solve stops at its
-    /// iteration cap where a factor fits falls back to the factorization.
-    Auto,
-}
-
-impl SolverSpec {
-    /// Every solver of the scene file's `solver` key, the iterative ones
-    /// (see [`SolverSpec::is_iterative`]) with this relative residual
-    /// `tolerance` and iteration cap: with [`SolverSpec::name`], the one
-    /// table of the solvers' names that scene files, reports and the
-    /// command line read.
-    #[must_use]
-    pub fn all(tolerance: f64, max_iterations: usize) -> [Self; 5] {
-        [
-            Self::Auto,
-            Self::Cholesky,
-            Self::Pcg {
-                tolerance,
-                max_iterations,
-            },
-            Self::Amg {
-                tolerance,
-                max_iterations,
-            },
-            Self::LaggedCholesky {
-                tolerance,
-                max_iterations,
-            },
-        ]
-    }
-
-    /// The solver's name, the `solver` key's value that reads as it:
-    /// `"auto"`, `"cholesky"`, `"pcg"`, `"amg"` or `"lagged-cholesky"`.
-    #[must_use]
-    pub const fn name(&self) -> &'static str {
-        match self {
-            Self::Auto => "auto",
-            Self::Cholesky => "cholesky",
-            Self::Pcg { .. } => "pcg",
-            Self::Amg { .. } => "amg",
-            Self::LaggedCholesky { .. } => "lagged-cholesky",
-        }
-    }
-
-    /// The solver called `name` (see [`SolverSpec::name`]), an iterative
-    /// one with this `tolerance` and iteration cap.
-    ///
-    /// ```
-    /// use hooke_scenes::SolverSpec;
-    /// let amg = SolverSpec::from_name("amg", 1e-8, 50);
-    /// assert_eq!(amg, Some(SolverSpec::Amg { tolerance: 1e-8, max_iterations: 50 }));
-    /// assert_eq!(SolverSpec::from_name("multigrid", 1e-8, 50), None);
-    /// ```
-    #[must_use]
-    pub fn from_name(name: &str, tolerance: f64, max_iterations: usize) -> Option<Self> {
-        Self::all(tolerance, max_iterations)
-            .into_iter()
-            .find(|s| s.name() == name)
-    }
-
-    /// Every solver's name (see [`SolverSpec::all`]).
-    #[must_use]
-    pub fn names() -> [&'static str; 5] {
-        let defaults = PcgSettings::default();
-        Self::all(defaults.tolerance(), defaults.max_iterations()).map(|s| s.name())
-    }
-
-    /// The names of the iterative solvers (see [`SolverSpec::is_iterative`]).
-    #[must_use]
-    pub fn iterative_names() -> Vec<&'static str> {
-        let defaults = PcgSettings::default();
-        Self::all(defaults.tolerance(), defaults.max_iterations())
-            .iter()
-            .filter(|s| s.is_iterative())
-            .map(Self::name)
-            .collect()
-    }
-
-    /// The same solver, an iterative one (see [`SolverSpec::is_iterative`])
-    /// with this relative residual `tolerance` and iteration cap; `auto`
-    /// and `cholesky` take neither.
-    ///
-    /// ```
-    /// use hooke_scenes::SolverSpec;
-    /// let pcg = SolverSpec::Pcg { tolerance: 1e-6, max_iterations: 1000 };
-    /// assert_eq!(pcg.with_pcg(1e-2, 50), SolverSpec::Pcg { tolerance: 1e-2, max_iterations: 50 });
-    /// assert_eq!(SolverSpec::Cholesky.with_pcg(1e-2, 50), SolverSpec::Cholesky);
-    /// ```
-    #[must_use]
-    pub const fn with_pcg(self, tolerance: f64, max_iterations: usize) -> Self {
-        match self {
-            Self::Pcg { .. } => Self::Pcg {
-                tolerance,
-                max_iterations,
-            },
-            Self::Amg { .. } => Self::Amg {
-                tolerance,
-                max_iterations,
-            },
-            Self::LaggedCholesky { .. } => Self::LaggedCholesky {
-                tolerance,
-                max_iterations,
-            },
-            direct @ (Self::Auto | Self::Cholesky) => direct,
-        }
-    }
-
-    /// Whether the solver is a PCG iteration, which takes a relative
-    /// residual `tolerance` and an iteration cap: `pcg`, `amg` and
-    /// `lagged-cholesky`.
-    #[must_use]
-    pub const fn is_iterative(&self) -> bool {
-        matches!(
-            self,
-            Self::Pcg { .. } | Self::Amg { .. } | Self::LaggedCholesky { .. }
-        )
-    }
-}
 
 /// `names` quoted and listed for a message: `"a", "b" or "c"`.
 pub(crate) fn quoted_list<'a>(names: impl IntoIterator<Item = &'a str>) -> String {
@@ -191,8 +33,8 @@ pub enum IntegratorSpec {
     Implicit {
         /// The scheme.
         scheme: Scheme,
-        /// The linear solver.
-        solver: SolverSpec,
+        /// The linear solver, with its settings.
+        solver: LinearSolver,
         /// How each step's incremental potential is minimised: Newton's
         /// method, L-BFGS, or Baraff & Witkin's linearised step.
         minimizer: Minimizer,
@@ -270,7 +112,7 @@ impl IntegratorSpec {
     pub fn implicit(scheme: Scheme) -> Self {
         Self::Implicit {
             scheme,
-            solver: SolverSpec::Auto,
+            solver: LinearSolver::Auto,
             minimizer: Minimizer::Newton,
             newton_iterations: Implicit::NEWTON_ITERATIONS,
             newton_tolerance: Implicit::NEWTON_TOLERANCE,
@@ -313,22 +155,6 @@ impl IntegratorSpec {
                 strict,
                 error_control,
             } => {
-                let solver = match solver {
-                    SolverSpec::Pcg {
-                        tolerance,
-                        max_iterations,
-                    } => LinearSolver::Pcg(PcgSettings::new(tolerance, max_iterations)?),
-                    SolverSpec::Cholesky => LinearSolver::Cholesky,
-                    SolverSpec::Amg {
-                        tolerance,
-                        max_iterations,
-                    } => LinearSolver::Amg(PcgSettings::new(tolerance, max_iterations)?),
-                    SolverSpec::LaggedCholesky {
-                        tolerance,
-                        max_iterations,
-                    } => LinearSolver::LaggedCholesky(PcgSettings::new(tolerance, max_iterations)?),
-                    SolverSpec::Auto => LinearSolver::Auto,
-                };
                 let implicit = Implicit::new(scheme)
                     .with_solver(solver)
                     .with_newton(newton_iterations, newton_tolerance)?

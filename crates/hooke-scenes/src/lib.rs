@@ -174,7 +174,7 @@ pub use cloth::Cloth;
 pub use error::{Element, SceneError};
 pub use grid::{Corner, Edge, Plane};
 pub use hooke_explicit::ExplicitMethod;
-pub use integrator::{IntegratorSpec, SolverSpec};
+pub use integrator::IntegratorSpec;
 pub use lattice::Lattice;
 pub use layered::Layered;
 pub use material::{Mass, Springs, Stiffness};

@@ -7,9 +7,9 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use hooke_core::{Path as Motion, Shape, Vec3};
-use hooke_implicit::{Implicit, Minimizer, Scheme};
+use hooke_implicit::{Implicit, LinearSolver, Minimizer, PcgSettings, Scheme};
 use hooke_scenes::file::{self, ErrorKind};
-use hooke_scenes::{IntegratorSpec, SolverSpec, builtin};
+use hooke_scenes::{IntegratorSpec, builtin};
 
 use common::{CLOTH, error_at, parse};
 
@@ -123,7 +123,7 @@ fn the_default_scene_drops_a_free_40_by_40_cloth_onto_a_sphere_on_a_floor() {
     };
     assert_eq!(
         (scheme, solver),
-        (Scheme::BackwardEuler, SolverSpec::Cholesky)
+        (Scheme::BackwardEuler, LinearSolver::Cholesky)
     );
 }
 
@@ -214,10 +214,7 @@ fn a_cloth_file_says_what_the_scene_holds() {
         IntegratorSpec::Implicit {
             scheme: Scheme::Bdf2,
             minimizer: Minimizer::Newton,
-            solver: SolverSpec::Pcg {
-                tolerance: 1e-7,
-                max_iterations: 300
-            },
+            solver: LinearSolver::Pcg(PcgSettings::new(1e-7, 300).unwrap()),
             newton_iterations: 4,
             newton_tolerance: Implicit::NEWTON_TOLERANCE,
             max_halvings: Implicit::MAX_HALVINGS,

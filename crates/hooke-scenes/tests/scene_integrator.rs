@@ -4,8 +4,8 @@
 mod common;
 
 use hooke_explicit::DormandPrince;
-use hooke_implicit::{ErrorControl, Minimizer, PcgSettings};
-use hooke_scenes::{IntegratorSpec, Method, SolverSpec};
+use hooke_implicit::{ErrorControl, LinearSolver, Minimizer, PcgSettings};
+use hooke_scenes::{IntegratorSpec, Method};
 
 use common::{CLOTH, parse};
 
@@ -40,13 +40,7 @@ fn every_method_is_named_as_its_integrator_is_with_the_integrators_defaults() {
     let IntegratorSpec::Implicit { solver, .. } = parse(&text).unwrap().integrator else {
         panic!("backward Euler is the default method");
     };
-    assert_eq!(
-        solver,
-        SolverSpec::Pcg {
-            tolerance: defaults.tolerance(),
-            max_iterations: defaults.max_iterations(),
-        }
-    );
+    assert_eq!(solver, LinearSolver::Pcg(defaults));
 }
 
 #[test]
@@ -65,33 +59,33 @@ fn solvers_and_the_fast_mass_spring_iterations_are_read_and_checked() {
         IntegratorSpec::Implicit { solver, .. } => solver,
         other => panic!("{other:?}"),
     };
-    assert_eq!(solver(""), SolverSpec::Auto);
-    assert_eq!(solver("solver = \"auto\""), SolverSpec::Auto);
+    assert_eq!(solver(""), LinearSolver::Auto);
+    assert_eq!(solver("solver = \"auto\""), LinearSolver::Auto);
     assert_eq!(
         solver("solver = \"amg\"\ntolerance = 1e-8"),
-        SolverSpec::Amg {
-            tolerance: 1e-8,
-            max_iterations: PcgSettings::default().max_iterations(),
-        }
+        LinearSolver::Amg(PcgSettings::new(1e-8, PcgSettings::default().max_iterations()).unwrap())
     );
     assert!(matches!(
         solver("solver = \"lagged-cholesky\""),
-        SolverSpec::LaggedCholesky { .. }
+        LinearSolver::LaggedCholesky(_)
     ));
     let message = spec("solver = \"multigrid\"").unwrap_err().to_string();
-    for name in SolverSpec::names() {
+    for name in LinearSolver::NAMES {
         assert!(message.contains(&format!("\"{name}\"")), "{message}");
     }
     // Every name of the table reads back as its solver, PCG's keys going
     // to the iterative ones and refused by the others.
-    for name in SolverSpec::names() {
+    let pcg = PcgSettings::new(1e-7, 30).unwrap();
+    for name in LinearSolver::NAMES {
         let keys = format!("solver = \"{name}\"\ntolerance = 1e-7\nmax_iterations = 30");
-        match SolverSpec::from_name(name, 1e-7, 30) {
-            Some(expected) if expected.is_iterative() => assert_eq!(solver(&keys), expected),
+        match LinearSolver::from_name(name) {
+            Some(expected) if expected.pcg().is_some() => {
+                assert_eq!(solver(&keys), expected.with_pcg(pcg));
+            }
             Some(expected) => {
                 assert_eq!(solver(&format!("solver = \"{name}\"")), expected);
                 let message = spec(&keys).unwrap_err().to_string();
-                for iterative in SolverSpec::iterative_names() {
+                for iterative in LinearSolver::iterative_names() {
                     assert!(message.contains(&format!("\"{iterative}\"")), "{message}");
                 }
             }

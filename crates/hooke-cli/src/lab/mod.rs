@@ -11,9 +11,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
-use hooke_implicit::PcgSettings;
+use hooke_implicit::{LinearSolver, PcgSettings};
 use hooke_lab::{LabError, Method, Range, Shard};
-use hooke_scenes::{Scene, SolverSpec};
+use hooke_scenes::Scene;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::cli_error::CliError;
@@ -73,7 +73,7 @@ pub(crate) struct SceneArgs {
     /// `solver` key (default: the scene's, if it runs an implicit method,
     /// else cholesky).
     #[arg(long, value_name = "SOLVER", value_parser = solver_parser())]
-    solver: Option<SolverSpec>,
+    solver: Option<LinearSolver>,
     /// The relative residual at which the --solver stops, when it is a PCG
     /// iteration (default: PCG's own).
     #[arg(long, value_name = "TOL", requires = "solver")]
@@ -89,13 +89,11 @@ pub(crate) struct SceneArgs {
 }
 
 /// `--solver`'s values: the names of the scene file's `solver` key, from
-/// its table ([`SolverSpec::names`]), each read as that solver at PCG's
+/// its table ([`LinearSolver::NAMES`]), each read as that solver at PCG's
 /// default settings.
-fn solver_parser() -> impl TypedValueParser<Value = SolverSpec> {
-    PossibleValuesParser::new(SolverSpec::names()).try_map(|name| {
-        let defaults = PcgSettings::default();
-        SolverSpec::from_name(&name, defaults.tolerance(), defaults.max_iterations())
-            .ok_or_else(|| format!("no solver \"{name}\""))
+fn solver_parser() -> impl TypedValueParser<Value = LinearSolver> {
+    PossibleValuesParser::new(LinearSolver::NAMES).try_map(|name| {
+        LinearSolver::from_name(&name).ok_or_else(|| format!("no solver \"{name}\""))
     })
 }
 
@@ -116,14 +114,16 @@ impl SceneArgs {
     ///
     /// # Errors
     /// [`CliError::PcgTolerance`] for `--pcg-tolerance` with a solver that
-    /// is not a PCG iteration.
+    /// is not a PCG iteration, [`LabError::Parameter`] for one out of range.
     fn settings(&self, scene: &Scene) -> Result<hooke_lab::Settings, CliError> {
         let mut settings = hooke_lab::Settings::from_scene(&scene.integrator);
         if let Some(solver) = self.solver {
             settings.solver = match self.pcg_tolerance {
                 None => solver,
-                Some(tolerance) if solver.is_iterative() => {
-                    solver.with_pcg(tolerance, PcgSettings::default().max_iterations())
+                Some(tolerance) if solver.pcg().is_some() => {
+                    let pcg = PcgSettings::new(tolerance, PcgSettings::default().max_iterations())
+                        .map_err(LabError::from)?;
+                    solver.with_pcg(pcg)
                 }
                 Some(_) => {
                     return Err(CliError::PcgTolerance {
@@ -208,17 +208,17 @@ mod tests {
         let solver = |args: &[&str]| settings(args).unwrap().unwrap().solver;
         // The oscillator runs velocity Verlet: the implicit methods take
         // the lab's default solver.
-        assert_eq!(solver(&[]), SolverSpec::Cholesky);
-        for name in SolverSpec::names() {
-            let expected = SolverSpec::from_name(name, pcg.tolerance(), pcg.max_iterations());
-            assert_eq!(Some(solver(&["--solver", name])), expected);
+        assert_eq!(solver(&[]), LinearSolver::Cholesky);
+        for name in LinearSolver::NAMES {
+            let expected = LinearSolver::from_name(name).unwrap();
+            assert_eq!(solver(&["--solver", name]), expected);
             let tightened = settings(&["--solver", name, "--pcg-tolerance", "1e-9"]).unwrap();
-            match expected {
-                Some(spec) if spec.is_iterative() => assert_eq!(
+            match expected.pcg() {
+                Some(_) => assert_eq!(
                     tightened.unwrap().solver,
-                    spec.with_pcg(1e-9, pcg.max_iterations())
+                    expected.with_pcg(PcgSettings::new(1e-9, pcg.max_iterations()).unwrap())
                 ),
-                _ => assert!(
+                None => assert!(
                     matches!(tightened, Err(CliError::PcgTolerance { solver }) if solver == name)
                 ),
             }

@@ -1,7 +1,7 @@
 //! Baraff–Witkin's modified preconditioned conjugate gradient: constraints
 //! act through per-particle filters inside the loop.
 
-use hooke_core::{ParameterError, Vec3};
+use hooke_core::{Parameter, ParameterError, Vec3};
 
 use crate::linear::block::SymBlock;
 
@@ -74,7 +74,7 @@ impl PcgSettings {
         if !(tolerance > 0.0 && tolerance < 1.0) {
             return Err(ParameterError::new(
                 "pcg",
-                "tolerance",
+                Parameter::Tolerance,
                 tolerance,
                 "in (0, 1)",
             ));
@@ -82,7 +82,7 @@ impl PcgSettings {
         if max_iterations == 0 {
             return Err(ParameterError::new(
                 "pcg",
-                "max_iterations",
+                Parameter::MaxIterations,
                 0.0,
                 "at least 1",
             ));

@@ -3,9 +3,10 @@
 //! local/global iterations on a constant, prefactored matrix.
 
 use hooke_core::{
-    Integrator, ParameterError, State, StepBuffers, StepError, StepReport, System, Vec3,
+    Integrator, Parameter, ParameterError, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
+use crate::linear::solver::LinearSolver;
 use crate::minimize::laplacian::Laplacian;
 
 /// Backward Euler for springs as Liu et al. (2013) solve it.
@@ -80,7 +81,7 @@ impl FastMassSpring {
         if iterations == 0 {
             return Err(ParameterError::new(
                 Self::NAME,
-                "iterations",
+                Parameter::Iterations,
                 0.0,
                 "at least 1",
             ));
@@ -220,7 +221,7 @@ impl Integrator for FastMassSpring {
             newton_iterations: *iterations,
             newton_iterations_max: *iterations,
             linear_solves: *iterations,
-            linear_solver: "cholesky",
+            linear_solver: LinearSolver::Cholesky.name(),
             ..StepReport::default()
         };
         out.finish(system, state, dt, report)

@@ -4,6 +4,7 @@
 
 use hooke_core::{CompressedSprings, StepError, StepReport, System, Vec3};
 
+use crate::linear::solver::LinearSolver;
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::Topology;
 use crate::linear::vector::{dot, for_each_row, for_each_row2};
@@ -272,7 +273,7 @@ impl Newton<'_> {
             a.clear_extra();
         }
         self.report.linear_solves += 1;
-        self.report.linear_solver = "cholesky";
+        self.report.linear_solver = LinearSolver::Cholesky.name();
         Ok(quasi.direction(system, self.b, v, delta))
     }
 

@@ -1,7 +1,7 @@
 //! [`Implicit`]'s builders and accessors: each sets or reads one of its
 //! [`Settings`](super::implicit::Settings).
 
-use hooke_core::{CompressedSprings, Integrator, ParameterError};
+use hooke_core::{CompressedSprings, Integrator, Parameter, ParameterError};
 
 use crate::linear::solver::{AmgRenewal, LinearSolver};
 use crate::step::comparison::Comparison;
@@ -77,7 +77,7 @@ impl Implicit {
         if max_iterations == 0 {
             return Err(ParameterError::new(
                 self.name(),
-                "newton_iterations",
+                Parameter::NewtonIterations,
                 0.0,
                 "at least 1",
             ));
@@ -85,7 +85,7 @@ impl Implicit {
         if !(tolerance.is_finite() && tolerance > 0.0) {
             return Err(ParameterError::new(
                 self.name(),
-                "newton_tolerance",
+                Parameter::NewtonTolerance,
                 tolerance,
                 "positive and finite",
             ));

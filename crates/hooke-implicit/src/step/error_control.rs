@@ -33,7 +33,7 @@
 //! (`p` the order; at most `0.9 h` after a rejection), as in Hairer,
 //! Nørsett & Wanner, *Solving Ordinary Differential Equations I*, §II.4.
 
-use hooke_core::{ParameterError, Vec3};
+use hooke_core::{Parameter, ParameterError, Vec3};
 
 /// The tolerances of error-controlled steps: a step's estimated local
 /// position error must not exceed `absolute + relative · (its largest
@@ -59,7 +59,7 @@ impl ErrorControl {
         if !(relative > 0.0 && relative < 1.0) {
             return Err(ParameterError::new(
                 "error control",
-                "relative tolerance",
+                Parameter::RelativeTolerance,
                 relative,
                 "in (0, 1)",
             ));
@@ -67,7 +67,7 @@ impl ErrorControl {
         if !(absolute.is_finite() && absolute >= 0.0) {
             return Err(ParameterError::new(
                 "error control",
-                "absolute tolerance",
+                Parameter::AbsoluteTolerance,
                 absolute,
                 "finite and non-negative",
             ));

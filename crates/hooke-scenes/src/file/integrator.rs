@@ -3,14 +3,15 @@
 
 use std::ops::Range;
 
-use hooke_implicit::{ErrorControl, Minimizer, PcgSettings, Scheme};
+use hooke_core::{Parameter, ParameterError};
+use hooke_implicit::{ErrorControl, LinearSolver, Minimizer, PcgSettings, Scheme};
 use toml::Spanned;
 
 use super::error::{ErrorKind, SceneFileError, Source};
 use super::schema::{IntegratorTable, Simulation};
 use super::values::positive;
 use crate::integrator::quoted_list;
-use crate::{IntegratorSpec, Method, SolverSpec, Timing};
+use crate::{IntegratorSpec, Method, Timing};
 
 /// Defaults of `[simulation]`: 5 s at 1/60 s steps, 60 frames per second.
 const DEFAULT_TIMING: Timing = Timing {
@@ -109,7 +110,7 @@ pub(crate) fn integrator(
         ("atol", t.atol.as_ref().map(Spanned::span)),
     ];
     let fast_only = [("iterations", t.iterations.as_ref().map(Spanned::span))];
-    let iterative_solvers = format!("solver {}", quoted_list(SolverSpec::iterative_names()));
+    let iterative_solvers = format!("solver {}", quoted_list(LinearSolver::iterative_names()));
     let fast_name = format!("method \"{}\"", Method::FastMassSpring);
     let reject = |keys: &[(&str, Option<Range<usize>>)], applies_to: &str| {
         keys.iter()
@@ -148,7 +149,7 @@ pub(crate) fn integrator(
             reject(&fast_only, &fast_name)?;
             let reject_pcg = || reject(&pcg_only, &iterative_solvers);
             let defaults = (newton_iterations, newton_tolerance, max_halvings, strict);
-            implicit(src, t, scheme, defaults, reject_pcg)?
+            implicit(src, table, scheme, defaults, reject_pcg)?
         }
         IntegratorSpec::Adaptive { rtol, atol } => {
             reject(&implicit_only, &implicit_names)?;
@@ -176,37 +177,7 @@ pub(crate) fn integrator(
         }
     };
     // The integrators check their own parameter ranges; point at the key.
-    spec.build().map_err(|e| {
-        let span = [
-            ("tolerance", t.tolerance.as_ref().map(Spanned::span)),
-            (
-                "max_iterations",
-                t.max_iterations.as_ref().map(Spanned::span),
-            ),
-            (
-                "newton_iterations",
-                t.newton_iterations.as_ref().map(Spanned::span),
-            ),
-            (
-                "newton_tolerance",
-                t.newton_tolerance.as_ref().map(Spanned::span),
-            ),
-            ("rtol", t.rtol.as_ref().map(Spanned::span)),
-            ("relative tolerance", t.rtol.as_ref().map(Spanned::span)),
-            ("atol", t.atol.as_ref().map(Spanned::span)),
-            ("absolute tolerance", t.atol.as_ref().map(Spanned::span)),
-            ("iterations", t.iterations.as_ref().map(Spanned::span)),
-        ]
-        .into_iter()
-        .find(|(key, _)| *key == e.parameter)
-        .and_then(|(_, span)| span)
-        .unwrap_or(table.span());
-        src.error(
-            Some(span),
-            format!("integrator.{}", e.parameter),
-            ErrorKind::Integrator(e),
-        )
-    })?;
+    spec.build().map_err(|e| out_of_range(src, table, e))?;
     Ok(spec)
 }
 
@@ -218,11 +189,12 @@ pub(crate) fn integrator(
 /// [`ErrorControl::ABSOLUTE`]).
 fn implicit(
     src: &Source<'_>,
-    t: &IntegratorTable,
+    table: &Spanned<IntegratorTable>,
     scheme: Scheme,
     (newton_iterations, newton_tolerance, max_halvings, strict): (usize, f64, u32, bool),
     reject_pcg: impl FnOnce() -> Result<(), SceneFileError>,
 ) -> Result<IntegratorSpec, SceneFileError> {
+    let t = table.get_ref();
     let defaults = PcgSettings::default();
     let tolerance = t
         .tolerance
@@ -233,19 +205,17 @@ fn implicit(
         .as_ref()
         .map_or(defaults.max_iterations(), |v| *v.get_ref());
     let solver = match &t.solver {
-        None => SolverSpec::Auto,
-        Some(name) => {
-            SolverSpec::from_name(name.get_ref(), tolerance, max_iterations).ok_or_else(|| {
-                src.invalid(
-                    name.span(),
-                    "integrator.solver",
-                    format!("\"{}\"", name.get_ref()),
-                    quoted_list(SolverSpec::names()),
-                )
-            })?
-        }
+        None => LinearSolver::Auto,
+        Some(name) => LinearSolver::from_name(name.get_ref()).ok_or_else(|| {
+            src.invalid(
+                name.span(),
+                "integrator.solver",
+                format!("\"{}\"", name.get_ref()),
+                quoted_list(LinearSolver::NAMES),
+            )
+        })?,
     };
-    if !solver.is_iterative() {
+    if solver.pcg().is_none() {
         reject_pcg()?;
     }
     let history = t
@@ -294,16 +264,14 @@ fn implicit(
                 rtol.unwrap_or(ErrorControl::RELATIVE),
                 atol.unwrap_or(ErrorControl::ABSOLUTE),
             )
-            .map_err(|e| {
-                let (key, span) = if e.parameter == "relative tolerance" {
-                    ("rtol", t.rtol.as_ref().map(Spanned::span))
-                } else {
-                    ("atol", t.atol.as_ref().map(Spanned::span))
-                };
-                src.error(span, format!("integrator.{key}"), ErrorKind::Integrator(e))
-            })?,
+            .map_err(|e| out_of_range(src, table, e))?,
         ),
     };
+    // PCG's settings, checked after the other keys (`auto` and `cholesky`,
+    // which take none, keep them at the defaults and ignore them).
+    let pcg =
+        PcgSettings::new(tolerance, max_iterations).map_err(|e| out_of_range(src, table, e))?;
+    let solver = solver.with_pcg(pcg);
     Ok(IntegratorSpec::Implicit {
         scheme,
         solver,
@@ -320,4 +288,46 @@ fn implicit(
         strict: t.strict.as_ref().map_or(strict, |v| *v.get_ref()),
         error_control,
     })
+}
+
+/// `error`, a setting of the table's integrator out of range, at the key
+/// that set it (the table itself for a setting scene files do not name).
+fn out_of_range(
+    src: &Source<'_>,
+    table: &Spanned<IntegratorTable>,
+    error: ParameterError,
+) -> SceneFileError {
+    let t = table.get_ref();
+    let (key, span) = match error.parameter {
+        Parameter::Tolerance => ("tolerance", t.tolerance.as_ref().map(Spanned::span)),
+        Parameter::MaxIterations => (
+            "max_iterations",
+            t.max_iterations.as_ref().map(Spanned::span),
+        ),
+        Parameter::NewtonIterations => (
+            "newton_iterations",
+            t.newton_iterations.as_ref().map(Spanned::span),
+        ),
+        Parameter::NewtonTolerance => (
+            "newton_tolerance",
+            t.newton_tolerance.as_ref().map(Spanned::span),
+        ),
+        Parameter::Rtol | Parameter::RelativeTolerance => {
+            ("rtol", t.rtol.as_ref().map(Spanned::span))
+        }
+        Parameter::Atol | Parameter::AbsoluteTolerance => {
+            ("atol", t.atol.as_ref().map(Spanned::span))
+        }
+        Parameter::Iterations => ("iterations", t.iterations.as_ref().map(Spanned::span)),
+        other @ (Parameter::Strength
+        | Parameter::Filter
+        | Parameter::SmootherDegree
+        | Parameter::FineDegree
+        | Parameter::CoarseUnknowns) => (other.name(), None),
+    };
+    src.error(
+        Some(span.unwrap_or(table.span())),
+        format!("integrator.{key}"),
+        ErrorKind::Integrator(error),
+    )
 }

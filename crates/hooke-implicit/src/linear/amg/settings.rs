@@ -1,6 +1,6 @@
 //! [`AmgSettings`]: the parameters of the hierarchy and the cycle.
 
-use hooke_core::ParameterError;
+use hooke_core::{Parameter, ParameterError};
 
 use super::prolongation::MODES;
 
@@ -30,16 +30,16 @@ impl AmgSettings {
         smoother_degree: usize,
         coarse_unknowns: usize,
     ) -> Result<Self, ParameterError> {
-        for (name, value) in [("strength", strength), ("filter", filter)] {
+        for (name, value) in [(Parameter::Strength, strength), (Parameter::Filter, filter)] {
             if !(0.0..1.0).contains(&value) {
                 return Err(ParameterError::new("amg", name, value, "in [0, 1)"));
             }
         }
-        check_degree("smoother_degree", smoother_degree)?;
+        check_degree(Parameter::SmootherDegree, smoother_degree)?;
         if coarse_unknowns < MODES {
             return Err(ParameterError::new(
                 "amg",
-                "coarse_unknowns",
+                Parameter::CoarseUnknowns,
                 coarse_unknowns as f64,
                 "at least 6",
             ));
@@ -59,7 +59,7 @@ impl AmgSettings {
     /// # Errors
     /// [`ParameterError`] if `degree` is 0.
     pub fn with_fine_degree(self, degree: usize) -> Result<Self, ParameterError> {
-        check_degree("fine_degree", degree)?;
+        check_degree(Parameter::FineDegree, degree)?;
         Ok(Self {
             fine_degree: degree,
             ..self
@@ -102,7 +102,7 @@ impl AmgSettings {
 }
 
 /// A Chebyshev degree, at least 1.
-fn check_degree(name: &'static str, degree: usize) -> Result<(), ParameterError> {
+fn check_degree(name: Parameter, degree: usize) -> Result<(), ParameterError> {
     if degree == 0 {
         return Err(ParameterError::new("amg", name, 0.0, "at least 1"));
     }
@@ -149,11 +149,14 @@ mod tests {
         let defaults = AmgSettings::default();
         assert_eq!((defaults.fine_degree(), defaults.coarse_degree()), (1, 2));
         for (error, parameter) in [
-            (settings.with_fine_degree(0), "fine_degree"),
-            (AmgSettings::new(0.0, 0.1, 0, 100), "smoother_degree"),
-            (AmgSettings::new(1.0, 0.1, 2, 100), "strength"),
-            (AmgSettings::new(0.0, -0.1, 2, 100), "filter"),
-            (AmgSettings::new(0.0, 0.1, 2, 5), "coarse_unknowns"),
+            (settings.with_fine_degree(0), Parameter::FineDegree),
+            (
+                AmgSettings::new(0.0, 0.1, 0, 100),
+                Parameter::SmootherDegree,
+            ),
+            (AmgSettings::new(1.0, 0.1, 2, 100), Parameter::Strength),
+            (AmgSettings::new(0.0, -0.1, 2, 100), Parameter::Filter),
+            (AmgSettings::new(0.0, 0.1, 2, 5), Parameter::CoarseUnknowns),
         ] {
             assert_eq!(error.unwrap_err().parameter, parameter);
         }

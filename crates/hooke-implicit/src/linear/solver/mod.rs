@@ -72,20 +72,95 @@ impl LinearSolver {
     pub const LAGGED_REFACTOR_ITERATIONS: usize = 10;
 
     /// Every solver's name as the scene files and reports spell it, in the
-    /// order of the variants.
-    pub const NAMES: [&'static str; 5] = ["pcg", "cholesky", "amg", "lagged-cholesky", "auto"];
+    /// order of [`LinearSolver::all`]: the one table of the names that
+    /// scene files, reports and the command line read.
+    pub const NAMES: [&'static str; 5] = ["auto", "cholesky", "pcg", "amg", "lagged-cholesky"];
 
-    /// The solver's name as the scene files and reports spell it: `"pcg"`,
-    /// `"cholesky"`, `"amg"`, `"lagged-cholesky"` or `"auto"`
+    /// Every solver, the iterative ones (see [`LinearSolver::pcg`]) with
+    /// `settings`, in the order of [`LinearSolver::NAMES`].
+    #[must_use]
+    pub const fn all(settings: PcgSettings) -> [Self; 5] {
+        [
+            Self::Auto,
+            Self::Cholesky,
+            Self::Pcg(settings),
+            Self::Amg(settings),
+            Self::LaggedCholesky(settings),
+        ]
+    }
+
+    /// The solver's name as the scene files and reports spell it:
+    /// `"auto"`, `"cholesky"`, `"pcg"`, `"amg"` or `"lagged-cholesky"`
     /// ([`LinearSolver::NAMES`]).
     #[must_use]
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         Self::NAMES[match self {
-            Self::Pcg(_) => 0,
+            Self::Auto => 0,
             Self::Cholesky => 1,
-            Self::Amg(_) => 2,
-            Self::LaggedCholesky(_) => 3,
-            Self::Auto => 4,
+            Self::Pcg(_) => 2,
+            Self::Amg(_) => 3,
+            Self::LaggedCholesky(_) => 4,
         }]
+    }
+
+    /// The solver called `name` (see [`LinearSolver::NAMES`]), an
+    /// iterative one at [`PcgSettings::default`].
+    ///
+    /// ```
+    /// use hooke_implicit::{LinearSolver, PcgSettings};
+    /// let amg = LinearSolver::from_name("amg");
+    /// assert_eq!(amg, Some(LinearSolver::Amg(PcgSettings::default())));
+    /// assert_eq!(LinearSolver::from_name("multigrid"), None);
+    /// ```
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::all(PcgSettings::default())
+            .into_iter()
+            .find(|solver| solver.name() == name)
+    }
+
+    /// The settings of a PCG iteration (`pcg`, `amg` and
+    /// `lagged-cholesky`): its relative residual tolerance and iteration
+    /// cap; `None` for `auto` and `cholesky`, which take neither.
+    #[must_use]
+    pub const fn pcg(self) -> Option<PcgSettings> {
+        match self {
+            Self::Pcg(settings) | Self::Amg(settings) | Self::LaggedCholesky(settings) => {
+                Some(settings)
+            }
+            Self::Auto | Self::Cholesky => None,
+        }
+    }
+
+    /// The same solver, a PCG iteration (see [`LinearSolver::pcg`]) with
+    /// `settings`; `auto` and `cholesky` take none and stay as they are.
+    ///
+    /// ```
+    /// use hooke_implicit::{LinearSolver, PcgSettings};
+    /// let loose = PcgSettings::new(1e-2, 50)?;
+    /// assert_eq!(
+    ///     LinearSolver::Pcg(PcgSettings::default()).with_pcg(loose),
+    ///     LinearSolver::Pcg(loose)
+    /// );
+    /// assert_eq!(LinearSolver::Cholesky.with_pcg(loose), LinearSolver::Cholesky);
+    /// # Ok::<(), hooke_core::ParameterError>(())
+    /// ```
+    #[must_use]
+    pub const fn with_pcg(self, settings: PcgSettings) -> Self {
+        match self {
+            Self::Pcg(_) => Self::Pcg(settings),
+            Self::Amg(_) => Self::Amg(settings),
+            Self::LaggedCholesky(_) => Self::LaggedCholesky(settings),
+            direct @ (Self::Auto | Self::Cholesky) => direct,
+        }
+    }
+
+    /// The names of the PCG iterations (see [`LinearSolver::pcg`]), in the
+    /// order of [`LinearSolver::NAMES`].
+    pub fn iterative_names() -> impl Iterator<Item = &'static str> {
+        Self::all(PcgSettings::default())
+            .into_iter()
+            .filter(|solver| solver.pcg().is_some())
+            .map(Self::name)
     }
 }
