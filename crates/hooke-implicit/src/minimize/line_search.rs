@@ -183,36 +183,52 @@ impl Newton<'_> {
     ) -> Potential {
         let mut current = full;
         let minimum = model_minimum(start, slope, full.value).map(|m| m.min(MAX_EXTRAPOLATION));
-        let mut doubling_below = match minimum {
+        let doubling_below = match minimum {
             Some(alpha) if alpha <= 1.5 => return current,
-            Some(alpha) if self.quasi.is_some() => alpha,
-            _ => f64::INFINITY,
+            Some(alpha) if self.quasi.is_some() => {
+                if let Some(further) = self.further(it, alpha, 1.0, current) {
+                    return further;
+                }
+                alpha
+            }
+            _ => 2.0 * MAX_EXTRAPOLATION,
         };
-        let reach = doubling_below - 1.0;
-        if doubling_below.is_finite() && self.limit(it.trial, it.delta, reach) >= reach {
-            combine(it.look, it.v, doubling_below, it.delta);
-            let further = self.potential(it.look);
-            if further.value < current.value {
-                std::mem::swap(it.trial, it.look);
-                return further;
-            }
-            self.evaluated_residual = false;
-        }
-        // Each doubling checks the motion from the last point, `α/2 δ`.
         let mut alpha = 2.0;
-        doubling_below = doubling_below.min(2.0 * MAX_EXTRAPOLATION);
-        while alpha < doubling_below && self.limit(it.trial, it.delta, 0.5 * alpha) >= 0.5 * alpha {
-            combine(it.look, it.v, alpha, it.delta);
-            let further = self.potential(it.look);
-            if further.value >= current.value {
-                self.evaluated_residual = false;
-                break;
+        while alpha < doubling_below {
+            match self.further(it, alpha, 0.5 * alpha, current) {
+                Some(further) => current = further,
+                None => break,
             }
-            current = further;
-            std::mem::swap(it.trial, it.look);
             alpha *= 2.0;
         }
         current
+    }
+
+    /// Tries `v + αδ` beyond the point `it.trial = v + α₀δ` where `Φ` is
+    /// `current`: if collision detection allows the motion `(α − α₀)δ` from
+    /// there and `Φ` is lower at `v + αδ`, that point becomes `it.trial`
+    /// and its `Φ` is returned; otherwise `None`, `it.trial` as it was.
+    fn further(
+        &mut self,
+        it: &mut Iterates<'_>,
+        alpha: f64,
+        from: f64,
+        current: Potential,
+    ) -> Option<Potential> {
+        let reach = alpha - from;
+        if self.limit(it.trial, it.delta, reach) < reach {
+            return None;
+        }
+        combine(it.look, it.v, alpha, it.delta);
+        let further = self.potential(it.look);
+        if further.value < current.value {
+            std::mem::swap(it.trial, it.look);
+            Some(further)
+        } else {
+            // `b` holds the gradient at the point just rejected.
+            self.evaluated_residual = false;
+            None
+        }
     }
 
     /// The longest multiple `α ≤ longest` of the step `δ` from `v` that
