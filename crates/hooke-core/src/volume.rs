@@ -194,9 +194,18 @@ impl Tet {
     /// The forces `−∂E/∂xₐ` on the four vertices at positions `x`, N.
     #[must_use]
     pub fn forces(&self, x: &[Vec3]) -> [Vec3; 4] {
+        self.ratio_and_forces(x).1
+    }
+
+    /// The volume ratio `J` and the forces `−∂E/∂xₐ` (as
+    /// [`Tet::forces`]) from one deformation gradient: what the energy
+    /// `½ κ V₀ (J − 1)²` and the forces need together.
+    #[must_use]
+    pub fn ratio_and_forces(&self, x: &[Vec3]) -> (f64, [Vec3; 4]) {
         let f = self.deformation(x);
-        let scale = -self.modulus * self.rest_volume * (f.determinant() - 1.0);
-        self.spread(&(scale * cofactor(&f)))
+        let j = f.determinant();
+        let scale = -self.modulus * self.rest_volume * (j - 1.0);
+        (j, self.spread(&(scale * cofactor(&f))))
     }
 
     /// `[∂⟨P, F⟩/∂xₐ]ₐ`: the gradient in the vertices of a function whose

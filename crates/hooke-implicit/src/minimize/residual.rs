@@ -7,7 +7,7 @@ use hooke_core::{Spring, StepError, System, Vec3};
 use crate::linear::pattern::Pattern;
 use crate::linear::vector::{for_each_row, sum2};
 use crate::minimize::assembly::{Assembler, Potential};
-use crate::minimize::volume::volume_energy;
+use crate::minimize::volume::volume_energy_and_forces;
 
 /// Where to evaluate: positions `x = x̃ + βh v`, velocities `v` and the
 /// predictor's `ṽ`.
@@ -112,10 +112,10 @@ impl Assembler {
         } else {
             self.volume_rhs.clear();
             self.volume_rhs.resize(n, Vec3::zeros());
-            system.add_volume_forces(x, &mut self.volume_rhs);
+            let terms = volume_energy_and_forces(system, x, &mut self.volume_rhs);
             let forces = &self.volume_rhs;
             for_each_row(b, |i, bi| *bi += beta_h * forces[i]);
-            volume_energy(system, x)
+            terms
         };
         Potential {
             value: particles + springs_energy + volume,

@@ -172,18 +172,41 @@ impl VolumeTerms {
 
 /// The volume elements' energy `Σ ½ κ V₀ (J − 1)²` at positions `x`, and the
 /// sum of the energies plus the energy the rounding of the vertices'
-/// coordinates puts into them, `κ V₀ |J − 1| |∇J| max|x|` per element
-/// (divided by ε), with `|∇J| ≈ V₀^(−1/3)`.
+/// coordinates puts into them (see [`element_energy`]).
 pub(crate) fn volume_energy(system: &System, x: &[Vec3]) -> (f64, f64) {
-    let (mut energy, mut rounding) = (0.0, 0.0);
-    for t in system.tets().iter().filter(|t| t.modulus > 0.0) {
-        let (stiffness, change) = (t.modulus * t.rest_volume, t.volume_ratio(x) - 1.0);
-        let e = 0.5 * stiffness * change * change;
-        let reach = t.vertices.iter().map(|&i| x[i].amax()).fold(0.0, f64::max);
-        energy += e;
-        rounding += e + stiffness * change.abs() * t.gradient_scale() * reach;
-    }
-    (energy, rounding)
+    elements(system).fold((0.0, 0.0), |(energy, rounding), t| {
+        let (e, r) = element_energy(t, t.volume_ratio(x), x);
+        (energy + e, rounding + r)
+    })
+}
+
+/// [`volume_energy`], and the elements' forces added to `f`, each element's
+/// deformation gradient computed once for both.
+pub(crate) fn volume_energy_and_forces(system: &System, x: &[Vec3], f: &mut [Vec3]) -> (f64, f64) {
+    elements(system).fold((0.0, 0.0), |(energy, rounding), t| {
+        let (j, forces) = t.ratio_and_forces(x);
+        for (&i, fi) in t.vertices.iter().zip(forces) {
+            f[i] += fi;
+        }
+        let (e, r) = element_energy(t, j, x);
+        (energy + e, rounding + r)
+    })
+}
+
+/// The elements with a modulus.
+fn elements(system: &System) -> impl Iterator<Item = &Tet> {
+    system.tets().iter().filter(|t| t.modulus > 0.0)
+}
+
+/// An element's energy `½ κ V₀ (J − 1)²` at volume ratio `j` and positions
+/// `x`, and that plus `κ V₀ |J − 1| |∇J| max|x|` (with `|∇J| ≈ V₀^(−1/3)`),
+/// the energy the rounding of its vertices' coordinates puts into it
+/// (divided by ε).
+fn element_energy(t: &Tet, j: f64, x: &[Vec3]) -> (f64, f64) {
+    let (stiffness, change) = (t.modulus * t.rest_volume, j - 1.0);
+    let e = 0.5 * stiffness * change * change;
+    let reach = t.vertices.iter().map(|&i| x[i].amax()).fold(0.0, f64::max);
+    (e, e + stiffness * change.abs() * t.gradient_scale() * reach)
 }
 
 #[cfg(test)]
