@@ -7,7 +7,10 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use hooke_core::{Path as Motion, Shape, Vec3};
-use hooke_implicit::{Implicit, LinearSolver, Minimizer, PcgSettings, Scheme};
+use hooke_explicit::DormandPrince;
+use hooke_implicit::{
+    ErrorControl, FastMassSpring, Implicit, LinearSolver, Minimizer, PcgSettings, Scheme,
+};
 use hooke_scenes::file::{self, ErrorKind};
 use hooke_scenes::{IntegratorSpec, builtin};
 
@@ -81,6 +84,56 @@ fn the_format_documents_shipped_scenes_as_they_are() {
         shown += 1;
     }
     assert!(shown >= 10, "{shown} scenes shown");
+}
+
+/// Where `docs/scene-format.md` prints a default beside the constant that
+/// holds it (`` `Implicit::NEWTON_TOLERANCE` (`1e-4`) ``), the printed value
+/// is the constant's.
+#[test]
+fn the_format_prints_the_defaults_the_constants_hold() {
+    let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scene-format.md");
+    let docs = std::fs::read_to_string(docs).unwrap();
+    let constants: [(&str, f64); 10] = [
+        ("Minimizer::HISTORY", Minimizer::HISTORY as f64),
+        (
+            "Implicit::NEWTON_ITERATIONS",
+            Implicit::NEWTON_ITERATIONS as f64,
+        ),
+        ("Implicit::NEWTON_TOLERANCE", Implicit::NEWTON_TOLERANCE),
+        ("Implicit::MAX_HALVINGS", f64::from(Implicit::MAX_HALVINGS)),
+        ("Implicit::MAX_CONDITION", Implicit::MAX_CONDITION),
+        ("DormandPrince::RTOL", DormandPrince::RTOL),
+        ("DormandPrince::ATOL", DormandPrince::ATOL),
+        ("ErrorControl::RELATIVE", ErrorControl::RELATIVE),
+        ("ErrorControl::ABSOLUTE", ErrorControl::ABSOLUTE),
+        (
+            "FastMassSpring::ITERATIONS",
+            FastMassSpring::ITERATIONS as f64,
+        ),
+    ];
+    for (name, value) in constants {
+        let quoted = format!("`{name}`");
+        let mut printed = docs.match_indices(&quoted).peekable();
+        assert!(printed.peek().is_some(), "{name} is not in the format");
+        for (at, _) in printed {
+            let after = &docs[at + name.len() + 2..];
+            let Some(shown) = after
+                .trim_start_matches([',', ' ', '('])
+                .strip_prefix('`')
+                .and_then(|rest| rest.split(['`', ' ']).next())
+            else {
+                continue;
+            };
+            let shown: f64 = shown
+                .parse()
+                .unwrap_or_else(|_| panic!("{name}: `{shown}` is not a number"));
+            assert_eq!(
+                shown.to_bits(),
+                value.to_bits(),
+                "the format prints {name} as {shown}, it holds {value}"
+            );
+        }
+    }
 }
 
 #[test]
