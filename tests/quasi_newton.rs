@@ -238,3 +238,39 @@ fn the_stopping_rule_has_no_units() {
     }
     assert!(total > 10 * 10, "{total} iterations");
 }
+
+/// Stopped at `ε = 10⁻²`, one step of a 12×12 sheet from rest lies within
+/// `5ε` of the converged step (mass norm, relative) where `k h²/m` is
+/// moderate (480 and 1 300): the stopping rule scales the decrement in
+/// `H₀`'s norm by the curvature `Φ` shows along the step. Measured in
+/// `H₀`'s norm alone, these steps stopped 9 % and 13 % away.
+#[test]
+fn the_stopping_rule_sees_the_curvature_along_the_step() {
+    for (stiffness, h) in [(1e2, 0.1), (1e4, 1.0 / 60.0)] {
+        let system = Sheet {
+            stiffness,
+            damping: 0.0,
+            air_damping: 0.0,
+            ..Sheet::new(12)
+        }
+        .system()
+        .unwrap();
+        let start = system.initial_state();
+        let newton = Implicit::backward_euler()
+            .with_solver(LinearSolver::Cholesky)
+            .with_newton(100, TIGHT)
+            .unwrap();
+        let quasi = Implicit::backward_euler()
+            .with_minimizer(Minimizer::quasi_newton())
+            .with_newton(5000, 1e-2)
+            .unwrap();
+        let (a, _) = run(newton, &system, &start, h, 1);
+        let (b, report) = run(quasi, &system, &start, h, 1);
+        assert_eq!(report.unconverged_steps, 0, "{report:?}");
+        let difference = relative_difference(&system, a.velocities(), b.velocities());
+        assert!(
+            difference < 5e-2,
+            "k = {stiffness}, h = {h}: {difference:e} from the converged step ({report:?})"
+        );
+    }
+}

@@ -45,7 +45,10 @@ impl Newton<'_> {
     /// step would lower `Φ` by no more than the rounding of `Φ` itself,
     /// `½|∇Φ·δ| ≤ rounding(Φ)` (stiff springs, whose forces carry the
     /// rounding of their ends' coordinates times `k`, reach that floor
-    /// first).
+    /// first). The quasi-Newton step's `λ`, measured in its model's norm,
+    /// is first scaled by its curvature along `δ` ([`curvature_correction`],
+    /// one evaluation of `Φ` at the full step, which the line search then
+    /// reuses).
     ///
     /// Every iterate is accepted through the Armijo condition
     /// `Φ(v + αδ) ≤ Φ(v) + 10⁻⁴ α ∇Φ·δ`:
@@ -115,18 +118,33 @@ impl Newton<'_> {
             // only once the last iterate lowered Φ by no more than rounding.
             let floor = 0.5 * slope.abs() <= current.rounding
                 && (self.quasi.is_none() || previous - current.value <= current.rounding);
+            // The full step's Φ, once the quasi-Newton stopping rule needed it.
+            let mut evaluated = None;
             if limit >= 1.0 && (outcome.residual <= tolerance || floor) {
-                add(it.v, it.delta);
-                outcome.converged = true;
-                break;
+                if self.quasi.is_none() || floor || outcome.residual == 0.0 {
+                    add(it.v, it.delta);
+                    outcome.converged = true;
+                    break;
+                }
+                combine(it.trial, it.v, 1.0, it.delta);
+                let full = self.potential(it.trial);
+                outcome.residual *= curvature_correction(current.value, slope, full.value);
+                if outcome.residual <= tolerance {
+                    std::mem::swap(it.v, it.trial);
+                    outcome.converged = true;
+                    break;
+                }
+                evaluated = Some(full);
             }
             previous = current.value;
             let sufficient = |value: Potential, alpha: f64| {
                 value.value <= current.value + ARMIJO * alpha * slope
             };
             if limit >= 1.0 {
-                combine(it.trial, it.v, 1.0, it.delta);
-                let full = self.potential(it.trial);
+                let full = evaluated.unwrap_or_else(|| {
+                    combine(it.trial, it.v, 1.0, it.delta);
+                    self.potential(it.trial)
+                });
                 if sufficient(full, 1.0) {
                     current = self.extend(it, current.value, slope, full);
                     std::mem::swap(it.v, it.trial);
@@ -253,6 +271,23 @@ impl Newton<'_> {
 fn model_minimum(start: f64, slope: f64, end: f64) -> Option<f64> {
     let curvature = end - start - slope;
     (curvature > 0.0).then(|| -slope / (2.0 * curvature))
+}
+
+/// The factor by which a quasi-Newton step's decrement, measured in `H₀`'s
+/// norm, underestimates the decrement along its direction `δ`:
+/// `√max(1, α*)`, `α*` the minimum of the quadratic through `Φ(0) =
+/// start`, the slope `∇Φ·δ` and `Φ(1) = end` ([`model_minimum`]); infinite
+/// where that quadratic is not convex.
+///
+/// `δ = −H∇Φ` makes `λ² = |∇Φ·δ| = δᵀH⁻¹δ`, while `Φ`'s own curvature along
+/// `δ` is `δᵀAδ ≈ 2(end − start − slope) = |∇Φ·δ| / α*`, so the decrement
+/// of the exact minimisation along `δ`, `(∇Φ·δ)² / δᵀAδ`, is `α* λ²` — a
+/// lower bound of Newton's `∇Φᵀ A⁻¹ ∇Φ` (Cauchy–Schwarz in `A`'s norm).
+/// Where `H` is far stiffer than `Φ` (a stiff cloth's bending and
+/// swinging modes under `H₀`'s `kI` per spring, a large step), `λ` alone
+/// reads a body that has barely started to move as converged.
+fn curvature_correction(start: f64, slope: f64, end: f64) -> f64 {
+    model_minimum(start, slope, end).map_or(f64::INFINITY, |alpha| alpha.max(1.0).sqrt())
 }
 
 /// `v += δ`.
