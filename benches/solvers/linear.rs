@@ -36,6 +36,12 @@ pub fn linear(c: &mut Criterion) {
         let mut workspace = cg::PcgWorkspace::default();
         if n <= 400 {
             let mut cholesky = SparseCholesky::new(&s.a).unwrap();
+            let factor = cholesky.info();
+            eprintln!(
+                "cholesky {n}²: {} factor entries, {} bytes per particle",
+                factor.factor_nonzeros,
+                factor.bytes / s.b.len()
+            );
             solve.bench_with_input(BenchmarkId::new("cholesky", n), &n, |b, _| {
                 b.iter(|| cholesky.solve(&s.a, &s.filters, &s.b, &mut x).unwrap());
             });
@@ -53,10 +59,11 @@ pub fn linear(c: &mut Criterion) {
             &mut workspace,
         )
         .unwrap();
+        let hierarchy = amg.info();
         eprintln!(
             "amg {n}²: levels {:?}, {} bytes per particle, {} iterations to {:.1e}",
-            amg.unknowns(),
-            amg.bytes() / s.b.len(),
+            hierarchy.unknowns,
+            hierarchy.bytes / s.b.len(),
             info.iterations,
             info.residual
         );

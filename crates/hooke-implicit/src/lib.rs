@@ -136,10 +136,12 @@ pub use step::scheme::{Minimizer, Scheme};
 /// integrator is configured through [`Implicit`] and [`LinearSolver`].
 #[doc(hidden)]
 pub mod internals {
-    pub use crate::linear::amg::{self, Amg, AmgSettings};
+    pub use crate::linear::amg::{self, Amg, AmgInfo, AmgSettings};
     pub use crate::linear::block::SymBlock;
     pub use crate::linear::cg::{self, BlockJacobi};
-    pub use crate::linear::cholesky::{CholeskyError, FactorPreconditioner, SparseCholesky};
+    pub use crate::linear::cholesky::{
+        CholeskyError, CholeskyInfo, FactorPreconditioner, SparseCholesky,
+    };
     pub use crate::linear::filter::Filter;
     pub use crate::linear::matrix::BlockMatrix;
     pub use crate::linear::pattern::Pattern;

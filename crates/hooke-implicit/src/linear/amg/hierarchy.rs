@@ -11,7 +11,7 @@ use super::coarse::ScalarCholesky;
 use super::fine::{self, Neighbours};
 use super::level::{Coarsest, Level, Transfer, coarse_graph, smoothing_weight};
 use super::prolongation::{MODES, smooth, tentative};
-use super::{AmgError, AmgSettings};
+use super::{AmgError, AmgInfo, AmgSettings};
 use crate::linear::cg::Preconditioner;
 use crate::linear::filter::Filter;
 use crate::linear::matrix::BlockMatrix;
@@ -187,27 +187,14 @@ impl Amg {
             .refresh_fine_smoother(a, filters, &mut self.xs, &mut self.ys, settings)
     }
 
-    /// The number of levels, the finest and the coarsest included.
+    /// What the hierarchy holds: each level's unknowns and its bytes.
     #[must_use]
-    pub fn level_count(&self) -> usize {
-        self.levels.len() + 2
-    }
-
-    /// The unknowns of each level, finest first; every aggregate of a
-    /// coarse level has six.
-    #[must_use]
-    pub fn unknowns(&self) -> Vec<usize> {
-        std::iter::once(self.fine.b.len())
+    pub fn info(&self) -> AmgInfo {
+        let unknowns = std::iter::once(self.fine.b.len())
             .chain(self.levels.iter().map(|l| l.b.len()))
             .chain(std::iter::once(self.coarsest.x.len()))
-            .collect()
-    }
-
-    /// Bytes the hierarchy holds (operators, transfers, smoothers, factor
-    /// and vectors; the fine matrix itself is not counted).
-    #[must_use]
-    pub fn bytes(&self) -> usize {
-        self.fine.bytes()
+            .collect();
+        let bytes = self.fine.bytes()
             + self.levels.iter().map(Level::bytes).sum::<usize>()
             + self.coarsest.a.bytes()
             + self.coarsest.scalar.bytes()
@@ -217,7 +204,8 @@ impl Amg {
                 .as_ref()
                 .map_or(0, ScalarCholesky::bytes)
             + self.neighbours.bytes()
-            + 48 * self.xs.len()
+            + 48 * self.xs.len();
+        AmgInfo { unknowns, bytes }
     }
 
     /// The preconditioner `z = V(r)`, one V-cycle on `Â` of the filtered

@@ -77,6 +77,20 @@ mod smoother;
 pub use self::hierarchy::{Amg, Cycle};
 pub use self::settings::AmgSettings;
 
+/// What a built hierarchy holds ([`Amg::info`]); the solves' iterations and
+/// residuals are [`PcgInfo`](crate::linear::cg::PcgInfo)'s, as multigrid
+/// preconditions CG.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct AmgInfo {
+    /// The unknowns of each level, finest first, the coarsest included;
+    /// every aggregate of a coarse level has six.
+    pub unknowns: Vec<usize>,
+    /// Bytes the hierarchy holds: operators, transfers, smoothers, the
+    /// coarsest level's factor and vectors (the fine matrix itself is not
+    /// counted).
+    pub bytes: usize,
+}
+
 /// Why a hierarchy could not be built or refreshed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AmgError {
