@@ -73,6 +73,9 @@ pub struct SparseCholesky {
     par: Par,
     /// Whether every block of the matrix last filled lay in the pattern.
     complete: bool,
+    /// Per particle, the diagonal added for the blocks left out
+    /// ([`SparseCholesky::is_complete`]).
+    compensation: Vec<f64>,
 }
 
 /// The sizes of a [`SparseCholesky`] ([`SparseCholesky::info`]): it has no
@@ -167,6 +170,7 @@ impl SparseCholesky {
             rhs: vec![0.0; dofs],
             par,
             complete: true,
+            compensation: vec![0.0; n],
         })
     }
 
@@ -279,8 +283,20 @@ impl SparseCholesky {
     /// Whether the last [`SparseCholesky::factorize`] factored the whole
     /// matrix: every block beside the springs' (of a contact or a volume
     /// element) joined two particles a spring joins too. Otherwise it
-    /// factored the matrix without the blocks that lie outside its
-    /// pattern, and [`SparseCholesky::solve_factored`] solves that one.
+    /// factored a matrix without the blocks `B` at `(i, j)` that lie
+    /// outside its pattern, each replaced by `‖B‖_F I` added to the
+    /// diagonal blocks of `i` and `j`, and
+    /// [`SparseCholesky::solve_factored`] solves that one.
+    ///
+    /// Leaving a block out alone could make a positive definite matrix
+    /// indefinite: a contact pair's Hessian joins four particles, of which
+    /// springs join some (a bending spring two apart, a shear spring across
+    /// a cell) and not others, and what remains of a positive semidefinite
+    /// 12 × 12 block is not. Removing the pair `E = [0 B; Bᵀ 0]` lowers the
+    /// matrix by at most `σ_max(B) ≤ ‖B‖_F` in each of the two particles'
+    /// directions, as `[σI −B; −Bᵀ σI] ⪰ 0` for `σ ≥ σ_max(B)`; the
+    /// compensation adds that back, so the factored matrix is at least the
+    /// whole one and positive definite whenever it is.
     #[must_use]
     pub fn is_complete(&self) -> bool {
         self.complete
@@ -294,9 +310,23 @@ impl SparseCholesky {
             (Filter::Free, Filter::Free) => block,
             _ => left.matrix() * block * right.matrix(),
         };
+        self.compensation.fill(0.0);
+        self.complete = a.extra_within_pattern();
+        if !self.complete {
+            let pattern = a.pattern();
+            for &(i, j, block) in &a.extra_pairs {
+                let (i, j) = (i as usize, j as usize);
+                if pattern.slot_between(i, j).is_none() {
+                    let norm = sandwich(block, filters[i], filters[j]).norm();
+                    self.compensation[i] += norm;
+                    self.compensation[j] += norm;
+                }
+            }
+        }
         for (q, &filter) in filters.iter().enumerate() {
             let s = filter.matrix();
-            let block = sandwich(a.diagonal(q), filter, filter) + Mat3::identity() - s;
+            let block = sandwich(a.diagonal(q), filter, filter) + Mat3::identity() - s
+                + self.compensation[q] * s;
             for c in 0..3 {
                 let start = self.col_ptr[3 * q + c] as usize;
                 for r in c..3 {
@@ -317,7 +347,6 @@ impl SparseCholesky {
                 }
             }
         }
-        self.complete = a.extra_within_pattern();
     }
 }
 
@@ -352,3 +381,6 @@ fn parallelism(particles: usize) -> Par {
 fn parallelism(_particles: usize) -> Par {
     Par::Seq
 }
+
+#[cfg(test)]
+mod tests;
