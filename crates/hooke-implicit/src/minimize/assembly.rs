@@ -44,7 +44,7 @@ use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::Topology;
 use crate::linear::vector::{for_each_row, for_each_row3, spring_chunks, sum2};
 use crate::minimize::linearization::Linearization;
-use crate::minimize::residual::{particles_potential, spring_potential};
+use crate::minimize::potential::{particles_potential, spring_potential};
 use crate::minimize::volume::{VolumeTerms, volume_energy};
 
 /// The incremental potential at a point and its rounding level.

@@ -10,6 +10,7 @@ pub(crate) mod laplacian;
 pub(crate) mod line_search;
 pub(crate) mod linearization;
 pub(crate) mod newton;
+pub(crate) mod potential;
 pub(crate) mod quasi_newton;
 pub(crate) mod residual;
 pub(crate) mod volume;
