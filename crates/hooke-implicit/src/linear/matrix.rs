@@ -67,9 +67,9 @@ pub struct BlockMatrix {
     /// and column, for the preconditioners and the Cholesky factor, which
     /// read the matrix slot by slot.
     pub(crate) extra_at_slots: Vec<Mat3>,
-    /// The number of blocks in `extra_pairs` between particles no spring
-    /// joins.
-    pub(crate) extra_outside: usize,
+    /// The indices in `extra_pairs` of the blocks between particles no
+    /// spring joins.
+    pub(crate) extra_outside: Vec<u32>,
 }
 
 impl BlockMatrix {
@@ -86,7 +86,7 @@ impl BlockMatrix {
             extra_rows: Vec::new(),
             extra_pairs: Vec::new(),
             extra_at_slots: Vec::new(),
-            extra_outside: 0,
+            extra_outside: Vec::new(),
         }
     }
 
@@ -96,7 +96,7 @@ impl BlockMatrix {
         self.extra_rows.clear();
         self.extra_pairs.clear();
         self.extra_at_slots.fill(Mat3::zeros());
-        self.extra_outside = 0;
+        self.extra_outside.clear();
     }
 
     /// Adds the block `B` (symmetric) to particle `i`'s diagonal.
@@ -119,6 +119,7 @@ impl BlockMatrix {
         block: Mat3,
         slot: Option<usize>,
     ) {
+        let index = self.extra_pairs.len() as u32;
         self.extra_pairs.push((i as u32, j as u32, block));
         match slot {
             Some(t) => {
@@ -127,7 +128,7 @@ impl BlockMatrix {
                 }
                 self.extra_at_slots[t] += if i < j { block } else { block.transpose() };
             }
-            None => self.extra_outside += 1,
+            None => self.extra_outside.push(index),
         }
     }
 
@@ -163,7 +164,16 @@ impl BlockMatrix {
     /// Whether every contact and element block between particles lies in
     /// the springs' pattern.
     pub(crate) fn extra_within_pattern(&self) -> bool {
-        self.extra_outside == 0
+        self.extra_outside.is_empty()
+    }
+
+    /// The contact and element blocks `(i, j, B)` between particles no
+    /// spring joins, which lie outside the pattern.
+    pub(crate) fn extra_outside_pattern(&self) -> impl Iterator<Item = (usize, usize, Mat3)> + '_ {
+        self.extra_outside.iter().map(|&k| {
+            let (i, j, block) = self.extra_pairs[k as usize];
+            (i as usize, j as usize, block)
+        })
     }
 
     /// The block `K_s` of spring `s`; the matrix holds `−K_s` at `(i, j)` and

@@ -3,7 +3,7 @@
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
@@ -261,10 +261,8 @@ impl SparseCholesky {
     #[must_use]
     pub fn info(&self) -> CholeskyInfo {
         let symbolic = match self.symbolic.raw() {
-            faer::sparse::linalg::cholesky::SymbolicCholeskyRaw::Simplicial(s) => {
-                4 * (s.col_ptr().len() + s.row_idx().len())
-            }
-            faer::sparse::linalg::cholesky::SymbolicCholeskyRaw::Supernodal(s) => {
+            SymbolicCholeskyRaw::Simplicial(s) => 4 * (s.col_ptr().len() + s.row_idx().len()),
+            SymbolicCholeskyRaw::Supernodal(s) => {
                 4 * (s.col_ptr_for_row_idx().len() + s.row_idx().len() + s.col_ptr_for_val().len())
             }
         };
@@ -274,6 +272,7 @@ impl SparseCholesky {
             factor_nonzeros: self.factor.len(),
             bytes: 4 * (self.col_ptr.len() + self.row_idx.len() + 3 * self.slot_columns.len())
                 + 8 * (self.values.len() + self.factor.len() + self.rhs.len())
+                + 8 * self.compensation.len()
                 + symbolic
                 + self.factor_memory.len()
                 + self.solve_memory.len(),
@@ -303,8 +302,8 @@ impl SparseCholesky {
     }
 
     /// Copies the lower triangle of `S A S + I − S` into `values`: the
-    /// blocks outside the springs' pattern left out
-    /// ([`SparseCholesky::is_complete`]).
+    /// blocks outside the springs' pattern left out and made up for on the
+    /// diagonal ([`SparseCholesky::is_complete`]).
     fn fill(&mut self, a: &BlockMatrix, filters: &[Filter]) {
         let sandwich = |block: Mat3, left: Filter, right: Filter| match (left, right) {
             (Filter::Free, Filter::Free) => block,
@@ -312,16 +311,10 @@ impl SparseCholesky {
         };
         self.compensation.fill(0.0);
         self.complete = a.extra_within_pattern();
-        if !self.complete {
-            let pattern = a.pattern();
-            for &(i, j, block) in &a.extra_pairs {
-                let (i, j) = (i as usize, j as usize);
-                if pattern.slot_between(i, j).is_none() {
-                    let norm = sandwich(block, filters[i], filters[j]).norm();
-                    self.compensation[i] += norm;
-                    self.compensation[j] += norm;
-                }
-            }
+        for (i, j, block) in a.extra_outside_pattern() {
+            let norm = sandwich(block, filters[i], filters[j]).norm();
+            self.compensation[i] += norm;
+            self.compensation[j] += norm;
         }
         for (q, &filter) in filters.iter().enumerate() {
             let s = filter.matrix();
