@@ -76,8 +76,13 @@ impl Newton<'_> {
     ///   straight line is stretched by `δ²/2L`, which the second step
     ///   removes, so a rotating stiff body is not held to the steps its
     ///   stretch allows;
-    /// - otherwise the step backtracks by halves. A line search that finds
-    ///   no decrease down to `α = 10⁻⁶` ends the iteration unconverged.
+    /// - otherwise the step backtracks by halves, and Newton's model of
+    ///   the friction turns to the majorizing one for the rest of the step
+    ///   (see the contact module's `friction`): contacts brought to rest
+    ///   through `s = 0` by the exact model, whose friction force is
+    ///   constant while they slide, are what makes a full step fail where
+    ///   a body lands. A line search that finds no decrease down to
+    ///   `α = 10⁻⁶` ends the iteration unconverged.
     ///
     /// With `inexact`, an iterative linear solver stops each Newton step at
     /// the relative residual `η = min(0.1, ½ λ_rel)` of the last relative
@@ -165,6 +170,9 @@ impl Newton<'_> {
                     // The contact candidates are the look-ahead's: check
                     // the step's own motion again for the backtracking.
                     self.limit(it.v, it.delta, 1.0);
+                }
+                if let Some(contact) = self.contact.as_deref_mut() {
+                    contact.majorize_friction();
                 }
             }
             let mut alpha = if limit >= 1.0 { 0.5 } else { limit };

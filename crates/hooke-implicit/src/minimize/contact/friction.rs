@@ -25,12 +25,40 @@
 //!
 //! is positive semidefinite (`f₁' ≥ 0`), tends to `2μλ/ε I` at `s = 0`,
 //! and enters the step's matrix as the blocks `wₖ wₗ T H Tᵀ`.
+//!
+//! **The majorizing model.** Along a sliding contact's direction `ŝ` that
+//! Hessian is zero (`f₁' = 0` above `ε`): Newton's model takes the friction
+//! force as constant there, so a step that should bring the contact to
+//! rest carries it through `s = 0` to slide the other way, where the force
+//! has turned, and the next step carries it back. With many contacts
+//! reversing at once — a soft body landing, its underside spreading and
+//! stopping under a normal force many times its weight — one step length
+//! for them all has to be halved until each lands within `ε` of rest, and
+//! Newton crawls. [`FrictionModel::Majorizing`] replaces `f₁'` by `f₁/|s|`,
+//! the Hessian `μλ f₁(|s|)/|s| I`. As `f₀(√t)` is concave in `t = |s|²`
+//! (`f₁(s)/s` falls with `s`), the quadratic with that Hessian lies above
+//! `D` everywhere and touches it at `s` — the lagged-diffusivity (Weiszfeld)
+//! model of a norm — so a full step never overshoots the friction's
+//! minimum. It is slower where a contact slides on slowly (its curvature
+//! `μλ/|s|` holds it back), so Newton's step starts each step with the
+//! exact Hessian and turns to this one when the exact model fails.
 
 use hooke_core::{Mat3, Vec3};
 use nalgebra::{Matrix2, Vector2};
 
 use crate::linear::block::SymBlock;
 use crate::linear::matrix::BlockMatrix;
+
+/// The friction's Hessian in Newton's model of `Φ`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum FrictionModel {
+    /// The exact Hessian, `μλ [f₁'(|s|) ŝŝᵀ + f₁(|s|)/|s| (I − ŝŝᵀ)]`.
+    #[default]
+    Exact,
+    /// `μλ f₁(|s|)/|s| I`, whose quadratic lies above `D` (see the module
+    /// docs).
+    Majorizing,
+}
 
 /// `f₀(s)`: the dissipation potential per unit bound.
 fn f0(s: f64, eps: f64) -> f64 {
@@ -118,11 +146,12 @@ impl Lagged {
     }
 
     /// Adds `scale · D` at `v` to a Newton system `A δ = −∇Φ`: subtracts
-    /// `scale ∇D` from `b` and adds `scale ∇²D` to `a`.
+    /// `scale ∇D` from `b` and adds `scale` times `model`'s Hessian of `D`
+    /// to `a`.
     pub(crate) fn add(
         &self,
         v: &[Vec3],
-        eps: f64,
+        (eps, model): (f64, FrictionModel),
         scale: f64,
         b: &mut [Vec3],
         a: &mut BlockMatrix,
@@ -130,6 +159,10 @@ impl Lagged {
         let s = self.tangential(v);
         let speed = s.norm();
         let (ratio, slope) = slopes(speed, eps);
+        let slope = match model {
+            FrictionModel::Exact => slope,
+            FrictionModel::Majorizing => ratio,
+        };
         let unit = if speed > 0.0 {
             s / speed
         } else {
@@ -183,5 +216,50 @@ mod tests {
             assert!((second - slope).abs() < 1e-3 / eps, "f₁' at {s}");
         }
         assert!((f0(eps, eps) - eps).abs() < 1e-18);
+    }
+
+    /// `D` and the quadratic model of a friction Hessian around `s₀`:
+    /// `q(s) = D(s₀) + ∇D(s₀)·(s − s₀) + ½ (s − s₀)ᵀ H (s − s₀)`.
+    fn model_gap(s0: Vector2<f64>, s: Vector2<f64>, eps: f64, model: FrictionModel) -> f64 {
+        let speed = s0.norm();
+        let (ratio, slope) = slopes(speed, eps);
+        let unit = s0 / speed;
+        let outer = unit * unit.transpose();
+        let along = match model {
+            FrictionModel::Exact => slope,
+            FrictionModel::Majorizing => ratio,
+        };
+        let hessian = along * outer + ratio * (Matrix2::identity() - outer);
+        let d = s - s0;
+        let q = f0(speed, eps) + (ratio * s0).dot(&d) + 0.5 * d.dot(&(hessian * d));
+        q - f0(s.norm(), eps)
+    }
+
+    /// The majorizing model lies above `D` everywhere and touches it at
+    /// `s₀`, sliding or sticking; the exact one falls below `D` where a
+    /// sliding contact's step carries it through rest.
+    #[test]
+    fn the_majorizing_model_lies_above_the_dissipation_potential() {
+        let eps = 1e-3;
+        let mut seed = 12_345_u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for scale in [0.3 * eps, 3.0 * eps, 300.0 * eps] {
+            for _ in 0..200 {
+                let s0 = scale * Vector2::new(next(), next());
+                assert!(model_gap(s0, s0, eps, FrictionModel::Majorizing).abs() < 1e-15);
+                for spread in [0.1 * eps, eps, 10.0 * eps, 1000.0 * eps] {
+                    let s = s0 + spread * Vector2::new(next(), next());
+                    let gap = model_gap(s0, s, eps, FrictionModel::Majorizing);
+                    assert!(gap >= -1e-15, "q − D = {gap} at s₀ = {s0:?}, s = {s:?}");
+                }
+            }
+        }
+        let s0 = Vector2::new(10.0 * eps, 0.0);
+        assert!(model_gap(s0, -s0, eps, FrictionModel::Exact) < -eps);
     }
 }

@@ -55,7 +55,7 @@ mod pairs;
 use hooke_core::{State, System, Vec3, collision::barrier::barrier};
 
 use crate::linear::matrix::BlockMatrix;
-use friction::Lagged;
+use friction::{FrictionModel, Lagged};
 use obstacles::{Obstacles, lag_friction};
 use pairs::Pairs;
 
@@ -87,6 +87,8 @@ pub(crate) struct Contact {
     /// The step's length `h`.
     step: f64,
     friction: Vec<Lagged>,
+    /// The friction's Hessian in Newton's model for the rest of the step.
+    friction_model: FrictionModel,
     /// The feasible positions the step starts from.
     start: Vec<Vec3>,
     /// The smallest gap seen at the end of an accepted step so far.
@@ -156,6 +158,7 @@ impl Contact {
         self.obstacles.begin(system, time, h, fresh);
         self.step = h;
         self.friction.clear();
+        self.friction_model = FrictionModel::Exact;
         self.start.clear();
         self.start.extend_from_slice(x0);
         let d_hat = self.activation;
@@ -347,8 +350,15 @@ impl Contact {
             );
         });
         for f in &self.friction {
-            f.add(v, self.sticking, beta_h, b, a);
+            f.add(v, (self.sticking, self.friction_model), beta_h, b, a);
         }
+    }
+
+    /// Turns Newton's model of the friction to the majorizing one of the
+    /// `friction` module for the rest of the step, once a full step of the
+    /// exact model has failed.
+    pub(crate) fn majorize_friction(&mut self) {
+        self.friction_model = FrictionModel::Majorizing;
     }
 
     /// The largest `τ ∈ [0, 1]` such that the motion from `x` to `x + τ dx`
