@@ -45,8 +45,9 @@ use crate::linear::vector::{MIN_CHUNK, PARALLEL_MIN_PARTICLES};
 /// (kept in its diagonal block too), and a block between two particles of
 /// a close pair of surface primitives or of an element (a general 3 × 3
 /// block: an element's Hessian couples its vertices' coordinates
-/// unsymmetrically). The product adds them after the springs' terms; a
-/// matrix of springs alone holds none. The diagonal blocks the
+/// unsymmetrically). Blocks between particles a spring joins are summed
+/// per slot and multiplied with the spring's; the product adds the others
+/// after the springs' terms. A matrix of springs alone holds none. The diagonal blocks the
 /// preconditioners read also carry, for each element block between
 /// particles no spring joins, a bound that keeps them positive definite
 /// without it ([`Assembler`](crate::internals::Assembler)).
@@ -58,18 +59,14 @@ pub struct BlockMatrix {
     pub(crate) springs: Vec<SymBlock>,
     /// Contact and element blocks on the diagonal, `(i, B)`: `yᵢ += B xᵢ`.
     pub(crate) extra_rows: Vec<(u32, SymBlock)>,
-    /// Contact and element blocks between particles, `(i, j, B)` with
-    /// `i ≠ j`:
-    /// `yᵢ += B xⱼ`, `yⱼ += Bᵀ xᵢ`.
+    /// Contact and element blocks between particles no spring joins,
+    /// `(i, j, B)` with `i ≠ j`: `yᵢ += B xⱼ`, `yⱼ += Bᵀ xᵢ`.
     pub(crate) extra_pairs: Vec<(u32, u32, Mat3)>,
     /// Per slot (empty until a block between particles a spring joins is
     /// added): the sum of those blocks at `(r, c)`, `r < c` the slot's row
-    /// and column, for the preconditioners and the Cholesky factor, which
-    /// read the matrix slot by slot.
+    /// and column, which the product, the preconditioners and the Cholesky
+    /// factor read slot by slot with the springs' blocks.
     pub(crate) extra_at_slots: Vec<Mat3>,
-    /// The indices in `extra_pairs` of the blocks between particles no
-    /// spring joins.
-    pub(crate) extra_outside: Vec<u32>,
 }
 
 impl BlockMatrix {
@@ -86,7 +83,6 @@ impl BlockMatrix {
             extra_rows: Vec::new(),
             extra_pairs: Vec::new(),
             extra_at_slots: Vec::new(),
-            extra_outside: Vec::new(),
         }
     }
 
@@ -96,7 +92,6 @@ impl BlockMatrix {
         self.extra_rows.clear();
         self.extra_pairs.clear();
         self.extra_at_slots.fill(Mat3::zeros());
-        self.extra_outside.clear();
     }
 
     /// Adds the block `B` (symmetric) to particle `i`'s diagonal.
@@ -112,6 +107,7 @@ impl BlockMatrix {
 
     /// [`Self::add_extra_pair`] with the slot between `i` and `j` known
     /// (`None`: no spring joins them).
+    #[inline]
     pub(crate) fn add_extra_pair_at(
         &mut self,
         i: usize,
@@ -119,8 +115,6 @@ impl BlockMatrix {
         block: Mat3,
         slot: Option<usize>,
     ) {
-        let index = self.extra_pairs.len() as u32;
-        self.extra_pairs.push((i as u32, j as u32, block));
         match slot {
             Some(t) => {
                 if self.extra_at_slots.is_empty() {
@@ -128,7 +122,7 @@ impl BlockMatrix {
                 }
                 self.extra_at_slots[t] += if i < j { block } else { block.transpose() };
             }
-            None => self.extra_outside.push(index),
+            None => self.extra_pairs.push((i as u32, j as u32, block)),
         }
     }
 
@@ -164,16 +158,15 @@ impl BlockMatrix {
     /// Whether every contact and element block between particles lies in
     /// the springs' pattern.
     pub(crate) fn extra_within_pattern(&self) -> bool {
-        self.extra_outside.is_empty()
+        self.extra_pairs.is_empty()
     }
 
     /// The contact and element blocks `(i, j, B)` between particles no
     /// spring joins, which lie outside the pattern.
     pub(crate) fn extra_outside_pattern(&self) -> impl Iterator<Item = (usize, usize, Mat3)> + '_ {
-        self.extra_outside.iter().map(|&k| {
-            let (i, j, block) = self.extra_pairs[k as usize];
-            (i as usize, j as usize, block)
-        })
+        self.extra_pairs
+            .iter()
+            .map(|&(i, j, block)| (i as usize, j as usize, block))
     }
 
     /// The block `K_s` of spring `s`; the matrix holds `−K_s` at `(i, j)` and
@@ -202,9 +195,9 @@ impl BlockMatrix {
         for i in 0..self.rows() {
             push(i, i, self.diagonal(i));
             for t in self.pattern.upper(i) {
-                let (j, block) = (self.pattern.column(t), -self.springs[t].to_mat3());
+                let (j, block) = (self.pattern.column(t), self.slot_block(t));
                 push(i, j, block);
-                push(j, i, block);
+                push(j, i, block.transpose());
             }
         }
         for &(i, j, block) in &self.extra_pairs {
@@ -254,7 +247,8 @@ impl BlockMatrix {
         self.extra_product(x, y);
     }
 
-    /// Adds the contact and element blocks' terms to `y`.
+    /// Adds the terms of the contact and element blocks on the diagonal and
+    /// outside the pattern to `y`.
     fn extra_product(&self, x: &[Vec3], y: &mut [Vec3]) {
         for (i, block) in &self.extra_rows {
             let i = *i as usize;
@@ -267,21 +261,28 @@ impl BlockMatrix {
         }
     }
 
-    /// Adds the terms of `rows` and their upper springs to `y`, which holds
-    /// the rows from `offset` on.
+    /// Adds the terms of `rows` and their upper slots (springs, and the
+    /// contact and element blocks between the same particles) to `y`, which
+    /// holds the rows from `offset` on.
     #[inline]
     fn product(&self, rows: Range<usize>, offset: usize, x: &[Vec3], y: &mut [Vec3]) {
         for i in rows {
             let xi = x[i];
             let mut yi = self.mass[i] * xi;
             let slots = self.pattern.upper(i);
-            for (&j, block) in self.pattern.column[slots.clone()]
-                .iter()
-                .zip(&self.springs[slots])
-            {
-                let f = block.mul(xi - x[j as usize]);
+            for (t, (&j, block)) in slots.clone().zip(
+                self.pattern.column[slots.clone()]
+                    .iter()
+                    .zip(&self.springs[slots]),
+            ) {
+                let xj = x[j as usize];
+                let f = block.mul(xi - xj);
                 yi += f;
                 y[j as usize - offset] -= f;
+                if let Some(extra) = self.extra_at_slots.get(t) {
+                    yi += extra * xj;
+                    y[j as usize - offset] += extra.tr_mul(&xi);
+                }
             }
             y[i - offset] += yi;
         }
