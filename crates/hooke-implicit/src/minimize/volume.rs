@@ -27,9 +27,14 @@ struct ElementTerms {
 
 /// Element count from which the elements' blocks are evaluated in parallel
 /// (with the `parallel` feature): an element's projected Hessian takes
-/// about a microsecond, its exact one a tenth of that, against the tens
-/// of microseconds of waking the workers.
-pub const PARALLEL_MIN_ELEMENTS: usize = 1024;
+/// about a microsecond, its exact one a fifth of that, against the tens
+/// of microseconds of waking the workers, and adding the blocks into the
+/// matrix (in element order, serially) costs as much again. Measured on 2
+/// cores, a whole assembly of the jelly cube's lattice with exact element
+/// Hessians: 1 296 elements 0.41–0.43 ms serially, 0.45–0.59 ms in
+/// parallel; 10 368 elements 4.7–4.9 ms and 3.4–4.5 ms; 82 944 elements
+/// 41.5 ms and 34 ms.
+pub const PARALLEL_MIN_ELEMENTS: usize = 4096;
 
 /// The volume elements' share of a linearised step, with their buffers.
 #[derive(Debug, Clone, Default)]
