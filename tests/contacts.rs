@@ -126,17 +126,16 @@ fn slide(angle: f64, mu: f64, time: f64, integrator: &mut dyn Integrator) -> f64
 /// Every fixed-step method with the tolerance on its sliding distance, and
 /// the implicit ones with the linearised step and converged (with both
 /// linear solvers).
-/// The linearised step's friction impulse `c v_t`, `c = μλ/|v_t|`, takes
-/// `|v_t|` at the step's start, so while the particle speeds up it brakes
-/// by `μλ·a h/|v_t|` too much: about 1.1 % of the distance here, against
-/// 0.1 % once the converged step's Newton iterations update `c`.
+/// The linearised step is one Newton step on `Φ`, whose friction term is
+/// exact for a sliding contact (its force is constant along the slide), so
+/// it slides within 0.17 % of the law here, as the converged step does.
 fn every_method() -> Vec<(Box<dyn Integrator + Send>, f64)> {
     let mut all: Vec<(Box<dyn Integrator + Send>, f64)> = fixed_step_integrators()
         .into_iter()
         .map(|integrator| (integrator, 1e-2))
         .collect();
-    all.push((Box::new(Implicit::backward_euler().linearized()), 2e-2));
-    all.push((Box::new(Implicit::bdf2().linearized()), 2e-2));
+    all.push((Box::new(Implicit::backward_euler().linearized()), 2e-3));
+    all.push((Box::new(Implicit::bdf2().linearized()), 2e-3));
     all.push((Box::new(Implicit::backward_euler()), 2e-3));
     all.push((
         Box::new(Implicit::bdf2().with_solver(LinearSolver::Pcg(PcgSettings::default()))),
