@@ -47,10 +47,11 @@ use crate::linear::vector::{MIN_CHUNK, PARALLEL_MIN_PARTICLES};
 /// block: an element's Hessian couples its vertices' coordinates
 /// unsymmetrically). Blocks between particles a spring joins are summed
 /// per slot and multiplied with the spring's; the product adds the others
-/// after the springs' terms. A matrix of springs alone holds none. The diagonal blocks the
-/// preconditioners read also carry, for each element block between
-/// particles no spring joins, a bound that keeps them positive definite
-/// without it ([`Assembler`](crate::internals::Assembler)).
+/// after the springs' terms. A matrix of springs alone holds none. The
+/// diagonal blocks the preconditioners read also carry, for each element
+/// block between particles no spring joins, a bound that keeps them
+/// positive definite without it
+/// ([`Assembler`](crate::internals::Assembler)).
 #[derive(Debug, Clone)]
 pub struct BlockMatrix {
     pub(crate) pattern: Pattern,

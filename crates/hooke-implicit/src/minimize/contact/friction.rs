@@ -60,6 +60,26 @@ pub(crate) enum FrictionModel {
     Majorizing,
 }
 
+impl FrictionModel {
+    /// `f₁(|s|)/|s|` (the gradient of `f₀(|s|)` is that times `s`) and this
+    /// model's Hessian of `f₀(|s|)` in `s`.
+    fn hessian(self, s: Vector2<f64>, eps: f64) -> (f64, Matrix2<f64>) {
+        let speed = s.norm();
+        let (ratio, slope) = slopes(speed, eps);
+        let along = match self {
+            Self::Exact => slope,
+            Self::Majorizing => ratio,
+        };
+        let unit = if speed > 0.0 {
+            s / speed
+        } else {
+            Vector2::zeros()
+        };
+        let outer = unit * unit.transpose();
+        (ratio, along * outer + ratio * (Matrix2::identity() - outer))
+    }
+}
+
 /// `f₀(s)`: the dissipation potential per unit bound.
 fn f0(s: f64, eps: f64) -> f64 {
     if s >= eps {
@@ -157,20 +177,8 @@ impl Lagged {
         a: &mut BlockMatrix,
     ) {
         let s = self.tangential(v);
-        let speed = s.norm();
-        let (ratio, slope) = slopes(speed, eps);
-        let slope = match model {
-            FrictionModel::Exact => slope,
-            FrictionModel::Majorizing => ratio,
-        };
-        let unit = if speed > 0.0 {
-            s / speed
-        } else {
-            Vector2::zeros()
-        };
-        let outer = unit * unit.transpose();
-        let hessian: Matrix2<f64> =
-            (slope * outer + ratio * (Matrix2::identity() - outer)) * self.bound;
+        let (ratio, hessian) = model.hessian(s, eps);
+        let hessian = self.bound * hessian;
         let t = Mat3::from_columns(&[self.basis[0], self.basis[1], Vec3::zeros()]);
         let gradient = self.bound * ratio * (self.basis[0] * s.x + self.basis[1] * s.y);
         let mut h2 = Mat3::zeros();
@@ -221,17 +229,9 @@ mod tests {
     /// `D` and the quadratic model of a friction Hessian around `s₀`:
     /// `q(s) = D(s₀) + ∇D(s₀)·(s − s₀) + ½ (s − s₀)ᵀ H (s − s₀)`.
     fn model_gap(s0: Vector2<f64>, s: Vector2<f64>, eps: f64, model: FrictionModel) -> f64 {
-        let speed = s0.norm();
-        let (ratio, slope) = slopes(speed, eps);
-        let unit = s0 / speed;
-        let outer = unit * unit.transpose();
-        let along = match model {
-            FrictionModel::Exact => slope,
-            FrictionModel::Majorizing => ratio,
-        };
-        let hessian = along * outer + ratio * (Matrix2::identity() - outer);
+        let (ratio, hessian) = model.hessian(s0, eps);
         let d = s - s0;
-        let q = f0(speed, eps) + (ratio * s0).dot(&d) + 0.5 * d.dot(&(hessian * d));
+        let q = f0(s0.norm(), eps) + (ratio * s0).dot(&d) + 0.5 * d.dot(&(hessian * d));
         q - f0(s.norm(), eps)
     }
 
