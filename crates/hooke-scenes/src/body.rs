@@ -34,6 +34,7 @@ pub struct Body {
     positions: Vec<Vec3>,
     springs: Vec<BodySpring>,
     tets: Vec<[usize; 4]>,
+    tet_weights: Vec<f64>,
     volume_modulus: f64,
     pins: Vec<usize>,
     triangles: Vec<[usize; 3]>,
@@ -156,6 +157,7 @@ impl Body {
             positions,
             springs,
             tets: Vec::new(),
+            tet_weights: Vec::new(),
             volume_modulus: 0.0,
             pins,
             triangles,
@@ -168,11 +170,26 @@ impl Body {
     /// with a positive volume at rest, none degenerate) of the modulus
     /// `volume` gives.
     pub(crate) fn with_tets(
-        mut self,
+        self,
         tets: Vec<[usize; 4]>,
         volume: Volume,
     ) -> Result<Self, SceneError> {
+        let weights = vec![1.0; tets.len()];
+        self.with_weighted_tets(tets, weights, volume)
+    }
+
+    /// The body with volume elements `tets` as in
+    /// [`with_tets`](Self::with_tets), each with its share `weights[t]` of
+    /// the modulus (see [`tet_weights`](Self::tet_weights)).
+    pub(crate) fn with_weighted_tets(
+        mut self,
+        tets: Vec<[usize; 4]>,
+        weights: Vec<f64>,
+        volume: Volume,
+    ) -> Result<Self, SceneError> {
+        debug_assert_eq!(tets.len(), weights.len());
         self.tets = tets;
+        self.tet_weights = weights;
         self.volume(volume)
     }
 
@@ -325,6 +342,26 @@ impl Body {
         &self.tets
     }
 
+    /// Each volume element's share `w` of the modulus: its energy is
+    /// `½ w κ V₀ (J − 1)²`. 1 for the tets of lattices and tet meshes,
+    /// which fill the body once; a [`Layered`](crate::Layered) body's
+    /// prisms average their six splits into three tets, each split
+    /// weighted `1/6`, so that a tet two splits share has `1/3`.
+    ///
+    /// ```
+    /// use hooke_scenes::{Lattice, Layered, TriangleMesh};
+    /// assert!(Lattice::cubes(2, 1, 1).build()?.tet_weights().iter().all(|&w| w == 1.0));
+    /// let tri = TriangleMesh::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], [[0, 1, 2]]);
+    /// let prism = Layered::new(tri, 0.1).surface(1e3).build()?;
+    /// let total: f64 = prism.tet_weights().iter().sum();
+    /// assert!((total - 3.0).abs() < 1e-12); // one cut's worth
+    /// # Ok::<(), hooke_scenes::SceneError>(())
+    /// ```
+    #[must_use]
+    pub fn tet_weights(&self) -> &[f64] {
+        &self.tet_weights
+    }
+
     /// The modulus `κ` of the volume elements, Pa (0 without any, or with
     /// [`Volume::Off`]).
     #[must_use]
@@ -333,7 +370,8 @@ impl Body {
     }
 
     /// The rest volume `V` of the body, m³: the sum of its volume
-    /// elements' volumes in the initial shape (0 without any).
+    /// elements' volumes in the initial shape, each times its
+    /// [weight](Self::tet_weights) (0 without any).
     ///
     /// ```
     /// let cube = hooke_scenes::Lattice::cubes(3, 2, 1).size([0.3, 0.2, 0.1]).build()?;
@@ -342,7 +380,7 @@ impl Body {
     /// ```
     #[must_use]
     pub fn rest_volume(&self) -> f64 {
-        volume::rest_volume(&self.tets, &self.positions)
+        volume::rest_volume(&self.tets, &self.tet_weights, &self.positions)
     }
 
     /// The bulk modulus of the body's springs under a uniform dilation,
@@ -381,7 +419,8 @@ impl Body {
     }
 
     /// Adds the body's particles, springs, volume elements
-    /// ([`SystemBuilder::tet`], with its [`volume_modulus`](Self::volume_modulus))
+    /// ([`SystemBuilder::tet`], with its [`volume_modulus`](Self::volume_modulus)
+    /// times each one's [weight](Self::tet_weights))
     /// and pins to `builder`, after whatever it holds already, and its
     /// triangles as a collision surface ([`SystemBuilder::surface`], with
     /// its [`Collision`] settings) unless it has none or its surface
@@ -414,8 +453,8 @@ impl Body {
                 .damping(s.damping);
         }
         let mut first_tet = None;
-        for t in &self.tets {
-            let index = builder.tet(t.map(|i| at + i), self.volume_modulus);
+        for (t, w) in self.tets.iter().zip(&self.tet_weights) {
+            let index = builder.tet(t.map(|i| at + i), w * self.volume_modulus);
             first_tet.get_or_insert(index);
         }
         let placement = Placement {

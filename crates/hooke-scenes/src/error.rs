@@ -96,12 +96,13 @@ pub enum SceneError {
         vertices: usize,
     },
     /// An element with zero area or volume (repeated or collinear/coplanar
-    /// corners; for a prism, a flat one of its three tets).
-    #[error("{element} is degenerate (its {} is {measure:e})", match element { Element::Triangle(_) => "area", Element::Tet(_) => "volume", Element::Prism(_) => "flat tet's volume" })]
+    /// corners; for a prism, all of its tets flat).
+    #[error("{element} is degenerate (its {} is {measure:e})", match element { Element::Triangle(_) => "area", Element::Tet(_) => "volume", Element::Prism(_) => "largest tet's volume" })]
     DegenerateElement {
         /// The element.
         element: Element,
-        /// Its area or unsigned volume (for a prism, that of its flat tet).
+        /// Its area or unsigned volume (for a prism, the largest of its
+        /// tets').
         measure: f64,
     },
     /// A tetrahedron whose orientation is opposite to that of tet 0.

@@ -52,7 +52,7 @@
 //! | [`Lattice::tets`] | as above | tet edges: cube edges, one diagonal per face, and for [`TetSplit::Six`] one body diagonal per cube | `5abc` or `6abc`, the springs' tets | as above |
 //! | [`Solid`] (tet mesh) | vertices | edge: the unique tet edges | the tets | faces used by one tet |
 //! | [`Shell`] (triangle mesh) | vertices | edge: unique edges; bend: across each shared edge, joining the opposite corners | none | the triangles |
-//! | [`Layered`] | `2 ×` vertices | edge on both layers, link vertex–copy, cross to the copies of the neighbours | 3 per triangle (its prism) | both layers |
+//! | [`Layered`] | `2 ×` vertices | edge on both layers, link vertex–copy, cross to the copies of the neighbours | 12 per triangle (its prism's six cuts into 3, averaged) | both layers |
 //!
 //! - **Cloth** lies in the x–z plane ([`Plane::Horizontal`]) or hangs in the
 //!   x–y plane ([`Plane::Vertical`]), may be rotated about an axis and offset;

@@ -91,10 +91,12 @@ pub(crate) fn spring_bulk_modulus(springs: &[BodySpring], volume: f64) -> f64 {
     }
 }
 
-/// The summed unsigned volume of `tets` at `positions`, m³.
-pub(crate) fn rest_volume(tets: &[[usize; 4]], positions: &[Vec3]) -> f64 {
+/// The summed unsigned volume of `tets` at `positions`, each times its
+/// weight, m³.
+pub(crate) fn rest_volume(tets: &[[usize; 4]], weights: &[f64], positions: &[Vec3]) -> f64 {
     tets.iter()
-        .map(|t| signed_volume(t.map(|v| positions[v])).abs())
+        .zip(weights)
+        .map(|(t, w)| w * signed_volume(t.map(|v| positions[v])).abs())
         .sum()
 }
 
