@@ -130,12 +130,31 @@ impl Contact {
     /// or within its surface's half thickness of one, out along the normal
     /// to half the contact distance — a scene set up touching an obstacle —
     /// before a step; returns how many it moved.
+    ///
+    /// A state with nothing to move is left untouched, so that BDF2's and
+    /// error control's history, which any write to the positions clears,
+    /// carries over to the next step.
     pub(crate) fn push_out(&mut self, system: &System, state: &mut State) -> usize {
         self.setup(system);
         let time = state.time();
+        let inside = |i: usize, x: &Vec3| {
+            !system.is_pinned(i)
+                && system
+                    .obstacles()
+                    .iter()
+                    .any(|o| self.obstacles.gap_at(o, i, *x, time).0 <= 0.0)
+        };
+        let Some(first) = state
+            .positions()
+            .iter()
+            .enumerate()
+            .position(|(i, x)| inside(i, x))
+        else {
+            return 0;
+        };
         let d_hat = self.activation;
         let mut moved = 0;
-        for (i, x) in state.positions_mut().iter_mut().enumerate() {
+        for (i, x) in state.positions_mut().iter_mut().enumerate().skip(first) {
             if system.is_pinned(i) {
                 continue;
             }
