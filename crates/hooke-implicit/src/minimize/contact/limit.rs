@@ -12,7 +12,10 @@ impl Pairs {
     /// among them.
     pub(crate) fn closest(&self, system: &System, x: &[Vec3], activation: f64) -> (usize, f64) {
         let (mut count, mut smallest) = (0, f64::INFINITY);
-        for pair in Self::pairs(system, &self.near) {
+        for (k, pair) in Self::pairs(system, &self.near).enumerate() {
+            if self.far(k, &pair, x, activation) {
+                continue;
+            }
             let gap = Self::gap(&pair, Self::squared(&pair, x));
             if gap < activation {
                 count += 1;
@@ -44,6 +47,7 @@ impl Pairs {
                 self.refresh(system, x, activation);
             } else {
                 self.reference = None;
+                self.searched.clear();
                 self.broad.swept(
                     system.surfaces(),
                     x,

@@ -43,6 +43,13 @@ pub(super) const MARGIN: f64 = 4.0;
 /// pair with a barrier term and every pair that can collide, and serves
 /// the iterations of a step, and the steps after it, until a particle
 /// leaves its ball. A motion that would leave it gets a swept search.
+///
+/// Each candidate's distance `D` at `x_s` is kept with the list. A point
+/// of a segment or triangle moves no farther than its farthest corner, so
+/// at positions `x` the pair is at least `D − δ₁ − δ₂` apart, `δ₁` and `δ₂`
+/// the farthest either primitive's corners have moved from `x_s`; a pair
+/// for which that exceeds `d̂` plus its thickness has no barrier term and
+/// no friction, and its exact distance is not computed.
 #[derive(Debug, Default)]
 pub(crate) struct Pairs {
     pub(super) broad: BroadPhase,
@@ -52,6 +59,9 @@ pub(crate) struct Pairs {
     /// The positions of the last proximity search, while its candidates
     /// are a Verlet list (not after a swept search).
     pub(super) reference: Option<Vec<Vec3>>,
+    /// Each candidate's distance at `reference`, in the order of
+    /// [`Pairs::pairs`] (empty after a swept search).
+    pub(super) searched: Vec<f64>,
     /// The margin `s` of the last proximity search.
     pub(super) margin: f64,
     /// The largest thickness of a pair.
@@ -150,6 +160,29 @@ impl Pairs {
         let reference = self.reference.get_or_insert_with(Vec::new);
         reference.clear();
         reference.extend_from_slice(x);
+        let near = &self.near;
+        self.searched.clear();
+        self.searched
+            .extend(Self::pairs(system, near).map(|pair| Self::squared(&pair, x).max(0.0).sqrt()));
+    }
+
+    /// Whether the candidate numbered `index`, `pair`, is certainly
+    /// farther than `activation` beyond its thickness at `x`: its distance
+    /// at the search's positions less how far the corners of each of its
+    /// two primitives have moved since (the type's docs). False after a
+    /// swept search.
+    pub(super) fn far(&self, index: usize, pair: &Pair, x: &[Vec3], activation: f64) -> bool {
+        let (Some(reference), Some(&searched)) = (&self.reference, self.searched.get(index)) else {
+            return false;
+        };
+        let moved = |k: usize| {
+            let p = pair.particles[k];
+            (x[p] - reference[p]).norm_squared()
+        };
+        let split = if pair.edges { 2 } else { 1 };
+        let first = (0..split).map(moved).fold(0.0, f64::max).sqrt();
+        let second = (split..4).map(moved).fold(0.0, f64::max).sqrt();
+        searched - first - second - pair.thickness >= activation
     }
 
     /// The squared distance of a pair at `x`, without derivatives.
@@ -218,7 +251,9 @@ impl Pairs {
     /// infinite if a gap is not positive.
     pub(crate) fn energy(&self, system: &System, x: &[Vec3], activation: f64) -> f64 {
         Self::pairs(system, &self.near)
-            .map(|pair| Self::value(system, &pair, x, activation))
+            .enumerate()
+            .filter(|(k, pair)| !self.far(*k, pair, x, activation))
+            .map(|(_, pair)| Self::value(system, &pair, x, activation))
             .sum()
     }
 
@@ -236,7 +271,10 @@ impl Pairs {
     ) -> usize {
         let (kb, kbb) = (kappa * beta_h, kappa * beta_h * beta_h);
         let mut count = 0;
-        for pair in Self::pairs(system, &self.near) {
+        for (k, pair) in Self::pairs(system, &self.near).enumerate() {
+            if self.far(k, &pair, x, activation) {
+                continue;
+            }
             let Some(term) = Self::term(system, &pair, x, activation) else {
                 continue;
             };
@@ -267,8 +305,8 @@ impl Pairs {
         (kappa, activation): (f64, f64),
         out: &mut Vec<Lagged>,
     ) {
-        for pair in Self::pairs(system, &self.near) {
-            if pair.friction <= 0.0 {
+        for (k, pair) in Self::pairs(system, &self.near).enumerate() {
+            if pair.friction <= 0.0 || self.far(k, &pair, x, activation) {
                 continue;
             }
             let [p0, p1, p2, p3] = pair.positions(x);
@@ -343,22 +381,34 @@ mod tests {
         close
     }
 
-    #[test]
-    fn the_verlet_list_holds_every_close_pair_until_a_particle_leaves_its_ball() {
+    /// The sheets, their contact distance and rest positions, and their
+    /// pairs searched there.
+    fn searched_sheets() -> (System, f64, Vec<Vec3>, Pairs) {
         let system = sheets();
         let d_hat = system.contact_distance();
         let x0 = system.initial_positions().to_vec();
         let mut pairs = Pairs::default();
         pairs.begin(&system);
         pairs.search(&system, &x0, d_hat);
+        (system, d_hat, x0, pairs)
+    }
+
+    /// Pseudo-random numbers in `[−½, ½)` from `seed`.
+    fn uniform(seed: u64) -> impl FnMut() -> f64 {
+        let mut seed = seed;
+        move || {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            (seed >> 11) as f64 / (1_u64 << 53) as f64 - 0.5
+        }
+    }
+
+    #[test]
+    fn the_verlet_list_holds_every_close_pair_until_a_particle_leaves_its_ball() {
+        let (system, d_hat, x0, mut pairs) = searched_sheets();
         // Every particle moved by just under half the margin, in a
         // pseudo-random direction: the list is kept, and still holds every
         // pair a fresh search finds within d̂.
-        let mut seed = 7_u64;
-        let mut unit = || {
-            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
-            (seed >> 11) as f64 / (1_u64 << 53) as f64 - 0.5
-        };
+        let mut unit = uniform(7);
         let reach = 0.5 * MARGIN * d_hat;
         let x1: Vec<Vec3> = x0
             .iter()
@@ -385,5 +435,50 @@ mod tests {
         x2[0] += Vec3::new(0.0, 1.01 * reach, 0.0) + (x0[0] - x1[0]);
         pairs.search(&system, &x2, d_hat);
         assert_eq!(pairs.reference.as_deref(), Some(&x2[..]));
+    }
+
+    #[test]
+    fn a_candidate_the_bound_calls_far_is_beyond_the_contact_distance() {
+        let (system, d_hat, x0, mut pairs) = searched_sheets();
+        let mut unit = uniform(11);
+        // Moves of up to a tenth of the margin's half and up to all of it,
+        // each particle in its own direction and by its own fraction.
+        for size in [0.1, 0.99] {
+            let moved = size * 0.5 * MARGIN * d_hat;
+            let x: Vec<Vec3> = x0
+                .iter()
+                .map(|x| x + moved * (unit() + 0.5) * Vec3::new(unit(), unit(), unit()).normalize())
+                .collect();
+            pairs.search(&system, &x, d_hat);
+            assert_eq!(pairs.reference.as_deref(), Some(&x0[..]));
+            let (mut far, mut near) = (0, 0);
+            for (k, pair) in Pairs::pairs(&system, &pairs.near).enumerate() {
+                let gap = Pairs::gap(&pair, Pairs::squared(&pair, &x));
+                if pairs.far(k, &pair, &x, d_hat) {
+                    far += 1;
+                    assert!(gap >= d_hat, "pair {:?}: gap {gap}", pair.particles);
+                } else if gap < d_hat {
+                    near += 1;
+                }
+            }
+            // The sheets are 2 mm apart: small moves leave every candidate
+            // far, and the largest bring some within d̂ = 1 mm.
+            if size < 0.5 {
+                assert!(
+                    far > 0 && near == 0,
+                    "moves of {moved} m: {far} far, {near} near"
+                );
+            } else {
+                assert!(near > 0, "moves of {moved} m: no pair within d̂");
+            }
+            let all: f64 = Pairs::pairs(&system, &pairs.near)
+                .map(|pair| Pairs::value(&system, &pair, &x, d_hat))
+                .sum();
+            let filtered = pairs.energy(&system, &x, d_hat);
+            assert!(
+                (filtered - all).abs() <= f64::EPSILON * all,
+                "{filtered} J, {all} J"
+            );
+        }
     }
 }
