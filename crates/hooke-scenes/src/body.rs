@@ -345,8 +345,8 @@ impl Body {
     /// Each volume element's share `w` of the modulus: its energy is
     /// `½ w κ V₀ (J − 1)²`. 1 for the tets of lattices and tet meshes,
     /// which fill the body once; a [`Layered`](crate::Layered) body's
-    /// prisms average their six splits into three tets, each split
-    /// weighted `1/6`, so that a tet two splits share has `1/3`.
+    /// prisms average their six cuts into three tets, each cut weighted
+    /// `1/6`, so that a tet two cuts share has `1/3`.
     ///
     /// ```
     /// use hooke_scenes::{Lattice, Layered, TriangleMesh};
