@@ -122,7 +122,7 @@ fn parallel_element_blocks_match_sequential_sums() {
     // The lattice with its elements, and without them for the springs'
     // share of the product.
     let [system, springs_only] = [Volume::Auto, Volume::Off].map(|volume| {
-        let lattice = Lattice::tets(9, 9, 9, TetSplit::Six)
+        let lattice = Lattice::tets(12, 12, 12, TetSplit::Six)
             .size([0.3, 0.3, 0.3])
             .edges(1e3)
             .volume(volume)

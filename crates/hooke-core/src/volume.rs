@@ -65,6 +65,8 @@ pub struct Tet {
     pub rest_volume: f64,
     /// `Dₘ⁻¹`, the inverse of the rest edge matrix.
     rest_inverse: Mat3,
+    /// `1 / 6V₀ = 1 / det Dₘ`.
+    ratio_scale: f64,
     /// `V₀^(−1/3)`.
     gradient_scale: f64,
 }
@@ -147,6 +149,7 @@ impl Tet {
             modulus,
             rest_volume: volume,
             rest_inverse: rest.try_inverse()?,
+            ratio_scale: (6.0 * volume).recip(),
             gradient_scale: volume.cbrt().recip(),
         })
     }
@@ -173,7 +176,8 @@ impl Tet {
     /// negative inverted.
     #[must_use]
     pub fn volume_ratio(&self, x: &[Vec3]) -> f64 {
-        self.deformation(x).determinant()
+        let [e1, e2, e3] = edge_vectors(&self.corners(x));
+        e1.dot(&e2.cross(&e3)) * self.ratio_scale
     }
 
     /// `∂J/∂xₐ` for the four vertices at positions `x`, 1/m: the
@@ -181,7 +185,19 @@ impl Tet {
     /// toward `a`, over `3V₀`.
     #[must_use]
     pub fn volume_gradient(&self, x: &[Vec3]) -> [Vec3; 4] {
-        self.spread(&cofactor(&self.deformation(x)))
+        self.ratio_and_gradient(&self.corners(x)).1
+    }
+
+    /// `J` and `∇J` at the corners `p`, from the edges `eₐ = pₐ − p₀`:
+    /// `6V = e₁ · (e₂ × e₃)`, so `∂J/∂pₐ` is the cross product of the other
+    /// two edges (in cyclic order) over `6V₀` for `a = 1, 2, 3`, and minus
+    /// their sum for `p₀`, whose move is every edge's. Equal to `det F` and
+    /// the cofactor of `F` carried to the vertices, without forming `F`.
+    fn ratio_and_gradient(&self, p: &[Vec3; 4]) -> (f64, [Vec3; 4]) {
+        let [e1, e2, e3] = edge_vectors(p);
+        let s = self.ratio_scale;
+        let (g1, g2, g3) = (s * e2.cross(&e3), s * e3.cross(&e1), s * e1.cross(&e2));
+        (e1.dot(&g1), [-(g1 + g2 + g3), g1, g2, g3])
     }
 
     /// The energy `½ κ V₀ (J − 1)²` at positions `x`, J.
@@ -202,10 +218,9 @@ impl Tet {
     /// `½ κ V₀ (J − 1)²` and the forces need together.
     #[must_use]
     pub fn ratio_and_forces(&self, x: &[Vec3]) -> (f64, [Vec3; 4]) {
-        let f = self.deformation(x);
-        let j = f.determinant();
+        let (j, dj) = self.ratio_and_gradient(&self.corners(x));
         let scale = -self.modulus * self.rest_volume * (j - 1.0);
-        (j, self.spread(&(scale * cofactor(&f))))
+        (j, dj.map(|g| scale * g))
     }
 
     /// `[∂⟨P, F⟩/∂xₐ]ₐ`: the gradient in the vertices of a function whose
@@ -222,16 +237,16 @@ impl Tet {
     #[must_use]
     pub fn derivatives(&self, x: &[Vec3], hessian: TetHessian) -> TetDerivatives {
         if hessian == TetHessian::Projected {
-            let (j, dj, f) = self.volume_derivatives(x);
+            let (j, dj) = self.ratio_and_gradient(&self.corners(x));
             let stiffness = self.modulus * self.rest_volume;
             let slope = stiffness * (j - 1.0);
             return TetDerivatives {
                 energy: 0.5 * slope * (j - 1.0),
                 gradient: dj.map(|g| slope * g),
-                hessian: self.projected_hessian(&f, stiffness, slope),
+                hessian: self.projected_hessian(&self.deformation(x), stiffness, slope),
             };
         }
-        let b = self.blocks(x, hessian);
+        let b = self.blocks(x, hessian, 1.0);
         let mut full = Mat12::zeros();
         for (a, block) in b.diagonal.iter().enumerate() {
             full.fixed_view_mut::<3, 3>(3 * a, 3 * a).copy_from(block);
@@ -248,18 +263,21 @@ impl Tet {
         }
     }
 
-    /// [`Tet::derivatives`] with the Hessian in blocks: for the exact and
-    /// the Gauss–Newton Hessian, the blocks `κ V₀ ∇ₐJ ∇_bJᵀ + E' ∂²J/∂xₐ∂x_b`
+    /// [`Tet::derivatives`] with the Hessian in blocks, each multiplied by
+    /// `scale` (a step's `β²h²`, at no extra cost): for the exact and the
+    /// Gauss–Newton Hessian, the blocks `κ V₀ ∇ₐJ ∇_bJᵀ + E' ∂²J/∂xₐ∂x_b`
     /// (`E' = κ V₀ (J − 1)`, or 0 for Gauss–Newton) are formed directly,
     /// without the 12 × 12 matrix.
     #[must_use]
-    pub fn blocks(&self, x: &[Vec3], hessian: TetHessian) -> TetBlocks {
-        let (j, dj, f) = self.volume_derivatives(x);
+    pub fn blocks(&self, x: &[Vec3], hessian: TetHessian, scale: f64) -> TetBlocks {
+        let p = self.corners(x);
+        let (j, dj) = self.ratio_and_gradient(&p);
         let stiffness = self.modulus * self.rest_volume;
         let slope = stiffness * (j - 1.0);
         let (energy, gradient) = (0.5 * slope * (j - 1.0), dj.map(|g| slope * g));
+        let (stiffness, slope) = (scale * stiffness, scale * slope);
         if hessian == TetHessian::Projected {
-            let full = self.projected_hessian(&f, stiffness, slope);
+            let full = self.projected_hessian(&self.deformation(x), stiffness, slope);
             let block = |a: usize, b: usize| full.fixed_view::<3, 3>(3 * a, 3 * b).into_owned();
             return TetBlocks {
                 energy,
@@ -273,24 +291,29 @@ impl Tet {
         } else {
             0.0
         };
-        let p = self.corners(x);
+        // `k ∇ₐJ ∇_bJᵀ + [d]×` with `d = E'(x_s − x_r)/6V₀`, written out.
+        let scaled = [0, 1, 2, 3].map(|a| stiffness * dj[a]);
         let mut pairs = [Mat3::zeros(); 6];
-        for (pair, (a, b, r, s)) in pairs.iter_mut().zip(ODD_PERMUTATION_PAIRS) {
-            *pair =
-                stiffness * dj[a] * dj[b].transpose() + curvature * (p[s] - p[r]).cross_matrix();
+        for (pair, &(a, b, r, s)) in pairs.iter_mut().zip(&ODD_PERMUTATION_PAIRS) {
+            let (u, w, d) = (scaled[a], dj[b], curvature * (p[s] - p[r]));
+            *pair = Mat3::new(
+                u.x * w.x,
+                u.x * w.y - d.z,
+                u.x * w.z + d.y,
+                u.y * w.x + d.z,
+                u.y * w.y,
+                u.y * w.z - d.x,
+                u.z * w.x - d.y,
+                u.z * w.y + d.x,
+                u.z * w.z,
+            );
         }
         TetBlocks {
             energy,
             gradient,
-            diagonal: dj.map(|g| stiffness * g * g.transpose()),
+            diagonal: std::array::from_fn(|a| scaled[a] * dj[a].transpose()),
             pairs,
         }
-    }
-
-    /// `J`, `∇J` and `F` at `x`.
-    fn volume_derivatives(&self, x: &[Vec3]) -> (f64, [Vec3; 4], Mat3) {
-        let f = self.deformation(x);
-        (f.determinant(), self.spread(&cofactor(&f)), f)
     }
 
     /// The Hessian from the eigenpairs of [`Tet`]'s docs, negative
@@ -344,16 +367,14 @@ const ODD_PERMUTATION_PAIRS: [(usize, usize, usize, usize); 6] = [
     (2, 3, 1, 0),
 ];
 
-/// The edge matrix `[p₁ − p₀, p₂ − p₀, p₃ − p₀]`.
-fn edges(p: &[Vec3; 4]) -> Mat3 {
-    Mat3::from_columns(&[p[1] - p[0], p[2] - p[0], p[3] - p[0]])
+/// The edges `[p₁ − p₀, p₂ − p₀, p₃ − p₀]`.
+fn edge_vectors(p: &[Vec3; 4]) -> [Vec3; 3] {
+    [p[1] - p[0], p[2] - p[0], p[3] - p[0]]
 }
 
-/// `∂ det F / ∂F`, the cofactor matrix: its columns are the cross products
-/// of the other two columns of `F`.
-fn cofactor(f: &Mat3) -> Mat3 {
-    let (c0, c1, c2) = (f.column(0), f.column(1), f.column(2));
-    Mat3::from_columns(&[c1.cross(&c2), c2.cross(&c0), c0.cross(&c1)])
+/// The edge matrix, [`edge_vectors`] as columns.
+fn edges(p: &[Vec3; 4]) -> Mat3 {
+    Mat3::from_columns(&edge_vectors(p))
 }
 
 /// `F = U diag(σ) Vᵀ` with `U` and `V` rotations and `σ₀ ≥ σ₁ ≥ |σ₂|`:
@@ -548,6 +569,8 @@ mod tests {
         for (name, x) in configurations() {
             let d = t.derivatives(&x, TetHessian::Exact);
             assert!((d.energy - t.energy(&x)).abs() <= 1e-12 * d.energy.max(1.0));
+            let j = t.deformation(&x).determinant();
+            assert!((t.volume_ratio(&x) - j).abs() <= 1e-13, "{name}: J ≠ det F");
             let forces = t.forces(&x);
             let h = 1e-6;
             let scale = d.hessian.amax();

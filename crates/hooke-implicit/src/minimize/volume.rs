@@ -26,20 +26,23 @@ struct ElementTerms {
 }
 
 /// Element count from which the elements' blocks are evaluated in parallel
-/// (with the `parallel` feature): an element's projected Hessian takes
-/// about a microsecond, its exact one a fifth of that, against the tens
-/// of microseconds of waking the workers, and adding the blocks into the
-/// matrix (in element order, serially) costs as much again. Measured on 2
-/// cores, a whole assembly of the jelly cube's lattice with exact element
-/// Hessians: 1 296 elements 0.41–0.43 ms serially, 0.45–0.59 ms in
-/// parallel; 10 368 elements 4.7–4.9 ms and 3.4–4.5 ms; 82 944 elements
-/// 41.5 ms and 34 ms.
-pub const PARALLEL_MIN_ELEMENTS: usize = 4096;
+/// (with the `parallel` feature): an element's exact Hessian takes a few
+/// tens of nanoseconds, its projected one about a microsecond, against the
+/// tens of microseconds of waking the workers, and in parallel each
+/// element's blocks are stored and read back to be added into the matrix
+/// (in element order, serially), where the serial path adds them as they
+/// are made. Measured on 2 cores, a whole assembly at a Newton iterate of
+/// the jelly cube's lattice (exact element Hessians), median of seven:
+/// 4 374 elements 0.45 ms serially, 0.48 ms in parallel; 10 368 elements
+/// 1.11 ms and 0.89 ms; 82 944 elements 18.6 ms and 18.9 ms.
+pub const PARALLEL_MIN_ELEMENTS: usize = 8192;
 
 /// The volume elements' share of a linearised step, with their buffers.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct VolumeTerms {
-    /// Per element: its blocks and right-hand-side shares.
+    /// Per element, when they are evaluated in parallel: its blocks and
+    /// right-hand-side shares.
+    #[cfg(feature = "parallel")]
     element_terms: Vec<ElementTerms>,
     /// Per element of the system identified by the first entry: the
     /// pattern's slot between each pair of its vertices, if a spring joins
@@ -63,9 +66,9 @@ impl VolumeTerms {
     /// point for Newton's method, which corrects it, or the whole step of
     /// the linearised integrator, and the Gauss–Newton Hessian, exact at
     /// rest, costs a tenth of the projection. The elements' blocks are
-    /// evaluated independently — in parallel from [`PARALLEL_MIN_ELEMENTS`]
-    /// elements on — and then added to the matrix in element order, so both
-    /// paths give the same sums.
+    /// added to the matrix in element order: each as it is evaluated below
+    /// [`PARALLEL_MIN_ELEMENTS`] elements, after all are evaluated in
+    /// parallel from there on, so both paths give the same sums.
     pub(crate) fn add(
         &mut self,
         volume_rhs: &mut Vec<Vec3>,
@@ -88,45 +91,24 @@ impl VolumeTerms {
             if t.modulus <= 0.0 {
                 return;
             }
-            let d = t.blocks(lin.positions, kind);
+            let d = t.blocks(lin.positions, kind, bh2);
             let block = |p: usize, q: usize| match p.cmp(&q) {
                 std::cmp::Ordering::Equal => d.diagonal[p],
                 std::cmp::Ordering::Less => d.pairs[pair_index(p, q)],
                 std::cmp::Ordering::Greater => d.pairs[pair_index(q, p)].transpose(),
             };
             for p in 0..4 {
-                let mut share = -d.gradient[p];
+                terms.rhs[p] = -bh * d.gradient[p];
                 if let Some(u) = lin.displacement {
+                    // `−βh H u` with the blocks' `β²h² H`.
                     for (q, &j) in t.vertices.iter().enumerate() {
-                        share -= block(p, q) * u[j];
+                        terms.rhs[p] -= block(p, q) * u[j] / bh;
                     }
                 }
-                terms.rhs[p] = bh * share;
-                terms.diagonal[p] = SymBlock::symmetric_part(&(bh2 * d.diagonal[p]));
+                terms.diagonal[p] = SymBlock::symmetric_part(&d.diagonal[p]);
             }
-            for (pair, block) in terms.pairs.iter_mut().zip(&d.pairs) {
-                *pair = bh2 * block;
-            }
+            terms.pairs = d.pairs;
         };
-        self.element_terms
-            .resize(tets.len(), ElementTerms::default());
-        let terms = &mut self.element_terms;
-        if cfg!(feature = "parallel") && tets.len() >= PARALLEL_MIN_ELEMENTS {
-            #[cfg(feature = "parallel")]
-            {
-                use rayon::prelude::*;
-                terms
-                    .par_iter_mut()
-                    .zip(tets.par_iter())
-                    .with_min_len(PARALLEL_MIN_ELEMENTS / 4)
-                    .for_each(|(terms, t)| evaluate(t, terms));
-            }
-        } else {
-            for (terms, t) in terms.iter_mut().zip(tets) {
-                evaluate(t, terms);
-            }
-        }
-
         if self.element_slots.0 != system.id() || self.element_slots.1.len() != tets.len() {
             self.element_slots.0 = system.id();
             self.element_slots.1.clear();
@@ -137,32 +119,52 @@ impl VolumeTerms {
         // The elements' diagonal blocks are summed per particle into one
         // row block for the product; the diagonal the preconditioners see
         // also gets the bounds of the blocks outside the springs' pattern.
-        self.rows.clear();
-        self.rows.resize(n, SymBlock::default());
-        self.diagonals.clear();
-        self.diagonals.resize(n, SymBlock::default());
+        let (rows, diagonals) = (&mut self.rows, &mut self.diagonals);
+        rows.clear();
+        rows.resize(n, SymBlock::default());
+        diagonals.clear();
+        diagonals.resize(n, SymBlock::default());
         volume_rhs.clear();
         volume_rhs.resize(n, Vec3::zeros());
-        let elements = tets
-            .iter()
-            .zip(&self.element_terms)
-            .zip(&self.element_slots.1);
-        for ((t, terms), slots) in elements {
+        let mut scatter = |t: &Tet, terms: &ElementTerms, slots: &[Option<usize>; 6]| {
             if t.modulus <= 0.0 {
-                continue;
+                return;
             }
             for (p, &i) in t.vertices.iter().enumerate() {
                 volume_rhs[i] += terms.rhs[p];
-                self.rows[i].add_assign(&terms.diagonal[p]);
+                rows[i].add_assign(&terms.diagonal[p]);
             }
             for ((&(p, q), &pair), &slot) in TET_PAIRS.iter().zip(&terms.pairs).zip(slots) {
                 let (i, j) = (t.vertices[p], t.vertices[q]);
                 if slot.is_none() {
                     let bound = SymBlock::scaled_identity(pair.norm());
-                    self.diagonals[i].add_assign(&bound);
-                    self.diagonals[j].add_assign(&bound);
+                    diagonals[i].add_assign(&bound);
+                    diagonals[j].add_assign(&bound);
                 }
                 a.add_extra_pair_at(i, j, pair, slot);
+            }
+        };
+        let slots = &self.element_slots.1;
+        if cfg!(feature = "parallel") && tets.len() >= PARALLEL_MIN_ELEMENTS {
+            #[cfg(feature = "parallel")]
+            {
+                use rayon::prelude::*;
+                self.element_terms
+                    .resize(tets.len(), ElementTerms::default());
+                self.element_terms
+                    .par_iter_mut()
+                    .zip(tets.par_iter())
+                    .with_min_len(PARALLEL_MIN_ELEMENTS / 4)
+                    .for_each(|(terms, t)| evaluate(t, terms));
+                for ((t, terms), slots) in tets.iter().zip(&self.element_terms).zip(slots) {
+                    scatter(t, terms, slots);
+                }
+            }
+        } else {
+            let mut terms = ElementTerms::default();
+            for (t, slots) in tets.iter().zip(slots) {
+                evaluate(t, &mut terms);
+                scatter(t, &terms, slots);
             }
         }
         for (i, (row, diagonal)) in self.rows.iter().zip(&mut self.diagonals).enumerate() {
