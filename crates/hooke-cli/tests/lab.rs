@@ -156,6 +156,26 @@ fn accuracy_writes_runs_orders_and_both_plots() {
     assert!((order("backward-euler").unwrap() - 1.0).abs() < 0.15);
     assert_png(&out.join("work_precision.png"));
     assert_png(&out.join("convergence.png"));
+    // Backward Euler is measured, so its default step variants run at the
+    // scene's step beside its converged step.
+    let variants = report["variants"].as_array().unwrap();
+    assert_eq!(variants.len(), 7);
+    assert_eq!(variants[0]["variant"], "newton:1e-2");
+    for run in variants {
+        for key in [
+            "dt",
+            "step",
+            "error_converged",
+            "error_rms",
+            "wall_s",
+            "iterations_per_step",
+        ] {
+            assert!(run.get(key).is_some(), "{key} in {run}");
+        }
+    }
+    assert_eq!(report["converged"].as_array().unwrap().len(), 1);
+    assert!(stdout.contains("newton:1e-9 (converged)"), "{stdout}");
+    assert_png(&out.join("variants.png"));
 }
 
 #[test]
@@ -216,6 +236,13 @@ fn bad_lab_options_are_errors_naming_them() {
     let (code, _, stderr) = hooke(&["stability", "--dt", "0:1:3"]);
     assert_eq!(code, ExitCode::from(2));
     assert!(stderr.contains("FIRST:LAST:COUNT"), "{stderr}");
+    // So is a step variant that is not one.
+    let (code, _, stderr) = hooke(&["accuracy", "--variants", "linearized,newton:abc"]);
+    assert_eq!(code, ExitCode::from(2));
+    assert!(
+        stderr.contains("\"newton:abc\": a tolerance must be a number > 0"),
+        "{stderr}"
+    );
 }
 
 /// `--solver` offers every value of the scene file's `solver` key, and

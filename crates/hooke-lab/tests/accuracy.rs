@@ -1,11 +1,13 @@
 //! The accuracy measurement checked against theory: orders of convergence
-//! on the damped oscillator, its closed form, and the numerical
-//! reference's error estimate.
+//! on the damped oscillator, its closed form, the numerical reference's
+//! error estimate, and the implicit step variants' distance from the
+//! converged step.
 
 use std::ops::ControlFlow;
 
 use hooke_core::{ObserveFn, Simulation, State, StepInfo, System, Vec3};
-use hooke_lab::accuracy::{AxialOscillator, ReferenceChoice, ReferenceKind};
+use hooke_implicit::LinearSolver;
+use hooke_lab::accuracy::{AxialOscillator, ReferenceChoice, ReferenceKind, StepVariant};
 use hooke_lab::{AccuracyOptions, LabError, Method, accuracy};
 use hooke_scenes::{ExplicitMethod, builtin};
 
@@ -120,7 +122,7 @@ type Spoil = fn(&mut AccuracyOptions);
 fn bad_options_are_errors_naming_the_option() {
     let scene = builtin::load("damped-oscillator").unwrap();
     let base = AccuracyOptions::for_scene(&scene);
-    let cases: [(&str, Spoil); 7] = [
+    let cases: [(&str, Spoil); 9] = [
         ("frames", |o| o.frames = 0),
         ("repeat", |o| o.repeat = 0),
         ("dt", |o| o.dts[3] = -1e-3),
@@ -128,6 +130,11 @@ fn bad_options_are_errors_naming_the_option() {
         ("tolerance", |o| o.tolerances[0] = f64::NAN),
         ("duration", |o| o.duration = f64::INFINITY),
         ("reference dt", |o| o.reference_dt = Some(0.0)),
+        ("variant steps", |o| {
+            o.variants = vec![StepVariant::Linearized];
+            o.variant_dts.clear();
+        }),
+        ("variant dt", |o| o.variant_dts = vec![f64::NAN]),
     ];
     for (option, spoil) in cases {
         let mut options = base.clone();
@@ -141,4 +148,71 @@ fn bad_options_are_errors_naming_the_option() {
     options.methods.clear();
     let error = accuracy(&scene, &options, &|_, _| {}).unwrap_err();
     assert!(error.to_string().starts_with("methods"), "{error}");
+}
+
+/// Backward Euler's step carried out in other ways on the swinging rope
+/// (a scripted pin, 1 s at the scene's step), each compared with the same
+/// step converged to 10⁻⁹: the variant that is that converged step
+/// (Newton to 10⁻⁹ with Cholesky) lies at distance zero; Newton's distance
+/// shrinks with its tolerance; the fast mass-spring method, whose fixed
+/// point is backward Euler's step, comes closer with more iterations; the
+/// linearised step takes one Newton iteration.
+#[test]
+fn step_variants_approach_the_converged_step_as_they_converge() {
+    let scene = builtin::load("swinging-rope").unwrap();
+    let mut options = AccuracyOptions::for_scene(&scene);
+    options.methods = vec![Method::BackwardEuler];
+    options.dts = vec![scene.timing.dt];
+    options.duration = 1.0;
+    options.repeat = 1;
+    options.settings.solver = LinearSolver::Cholesky;
+    options.variants = vec![
+        StepVariant::Newton(1e-9),
+        StepVariant::Newton(1e-2),
+        StepVariant::Newton(1e-6),
+        StepVariant::FastMassSpring(10),
+        StepVariant::FastMassSpring(100),
+        StepVariant::FastMassSpring(1000),
+        StepVariant::Linearized,
+    ];
+    let report = accuracy(&scene, &options, &|_, _| {}).unwrap();
+    assert_eq!(report.converged.len(), 1);
+    assert_eq!(report.variants.len(), options.variants.len());
+    let distance = |variant| {
+        let run = report
+            .variants
+            .iter()
+            .find(|r| r.variant == variant)
+            .unwrap();
+        assert!(run.failure.is_none(), "{variant}: {:?}", run.failure);
+        run.error_converged.unwrap()
+    };
+    // The same integrator as the converged run: the same positions, bit
+    // for bit.
+    assert!(distance(StepVariant::Newton(1e-9)) <= 0.0);
+    let (loose, tight) = (
+        distance(StepVariant::Newton(1e-2)),
+        distance(StepVariant::Newton(1e-6)),
+    );
+    assert!(
+        tight < 1e-2 * loose && tight < 1e-6,
+        "Newton 1e-2: {loose:e} m, 1e-6: {tight:e} m"
+    );
+    let fms = [10, 100, 1000].map(|k| distance(StepVariant::FastMassSpring(k)));
+    assert!(
+        fms[0] > 2.0 * fms[1] && fms[1] > 2.0 * fms[2],
+        "fast mass-spring 10 / 100 / 1000: {fms:?}"
+    );
+    let linearized = report
+        .variants
+        .iter()
+        .find(|r| r.variant == StepVariant::Linearized)
+        .unwrap();
+    assert!((linearized.iterations_per_step - 1.0).abs() < 1e-12);
+    assert!(linearized.error_converged.unwrap() > tight);
+    // The converged step's own error against the reference, and each
+    // variant's, are measured as a method's run is.
+    let converged = &report.converged[0];
+    assert_eq!(converged.unconverged_steps, 0);
+    assert!(converged.error_rms.is_some_and(|e| e > 0.0));
 }

@@ -6,12 +6,13 @@ use std::io::Write;
 use std::path::Path;
 
 use clap::Args;
-use hooke_lab::accuracy::{ReferenceKind, Series as RunSeries};
-use hooke_lab::{AccuracyOptions, AccuracyReport, Shard, accuracy};
+use hooke_lab::accuracy::{ReferenceKind, Series as RunSeries, StepVariant};
+use hooke_lab::{AccuracyOptions, AccuracyReport, Method, Shard, accuracy};
 use hooke_viz::plot::{LogLogPlot, Reference, Series, write_log_log};
 
 use super::files::{
-    ACCURACY_JSON, CONVERGENCE_PNG, LabReport, RUN_COLUMNS, WORK_PRECISION_PNG, run_row, write,
+    ACCURACY_JSON, CONVERGENCE_PNG, LabReport, RUN_COLUMNS, VARIANTS_PNG, WORK_PRECISION_PNG,
+    run_row, write,
 };
 use super::{SceneArgs, Values};
 use crate::cli_error::CliError;
@@ -46,6 +47,34 @@ pub(crate) struct AccuracyArgs {
     /// the smallest --dt, at most 0.5/ω_max).
     #[arg(long, value_name = "SECONDS")]
     reference_dt: Option<f64>,
+    /// Backward Euler's step carried out in other ways, each compared with
+    /// the same step converged to 1e-9 at each --variant-dt,
+    /// comma-separated: newton:TOL, quasi-newton:TOL, linearized,
+    /// fast-mass-spring:ITERATIONS, or none (default, when backward-euler
+    /// is measured: newton:1e-2, newton:1e-4, quasi-newton:1e-2,
+    /// quasi-newton:1e-3, linearized, fast-mass-spring:10,
+    /// fast-mass-spring:100)
+    #[arg(long, value_name = "LIST", value_delimiter = ',', value_parser = variant_arg)]
+    variants: Option<Vec<VariantArg>>,
+    /// The steps of the step variants in seconds (default: the scene's
+    /// step).
+    #[arg(long, value_name = "VALUES")]
+    variant_dt: Option<Values>,
+}
+
+/// A step variant, or `none`.
+#[derive(Debug, Clone, Copy)]
+enum VariantArg {
+    None,
+    Variant(StepVariant),
+}
+
+fn variant_arg(text: &str) -> Result<VariantArg, String> {
+    if text.trim() == "none" {
+        Ok(VariantArg::None)
+    } else {
+        text.trim().parse().map(VariantArg::Variant)
+    }
 }
 
 /// `hooke accuracy`: the whole measurement, or with `--shard` one part of
@@ -68,9 +97,23 @@ pub(crate) fn accuracy_command(args: &AccuracyArgs, out: &mut dyn Write) -> Resu
     options.repeat = args.repeat;
     options.reference_dt = args.reference_dt;
     options.shard = args.scene.shard;
+    options.variants = match &args.variants {
+        Some(list) => list
+            .iter()
+            .filter_map(|v| match v {
+                VariantArg::None => None,
+                VariantArg::Variant(v) => Some(*v),
+            })
+            .collect(),
+        None if options.methods.contains(&Method::BackwardEuler) => StepVariant::defaults(),
+        None => Vec::new(),
+    };
+    if let Some(dts) = &args.variant_dt {
+        options.variant_dts.clone_from(&dts.0);
+    }
     writeln!(
         out,
-        "{}: {} integrators, {} steps from {:.3e} s to {:.3e} s, {} s simulated, {} repeats{}",
+        "{}: {} integrators, {} steps from {:.3e} s to {:.3e} s, {} s simulated, {} repeats, {} step variants{}",
         scene.name,
         options.methods.len(),
         options.dts.len(),
@@ -78,6 +121,7 @@ pub(crate) fn accuracy_command(args: &AccuracyArgs, out: &mut dyn Write) -> Resu
         options.dts.last().copied().unwrap_or(f64::NAN),
         options.duration,
         options.repeat,
+        options.variants.len(),
         options
             .shard
             .map_or_else(String::new, |s| format!(", part {s}"))
@@ -106,7 +150,15 @@ fn figures(report: &AccuracyReport, dir: &Path) -> Result<(), CliError> {
             title: format!("{}: error against run time", report.scene),
             x_label: "wall time (s)".into(),
             y_label: "RMS error at the end (m)".into(),
-            series: plot_series(report.work_precision()),
+            series: plot_series(report.work_precision())
+                .into_iter()
+                .chain(report.variant_series(|r| r.error_rms).into_iter().map(
+                    |(variant, points)| Series {
+                        label: format!("backward-euler {variant}"),
+                        points,
+                    },
+                ))
+                .collect(),
             reference: Some(Reference {
                 y: TARGET_ERROR,
                 label: "1 mm".into(),
@@ -115,6 +167,29 @@ fn figures(report: &AccuracyReport, dir: &Path) -> Result<(), CliError> {
         &dir.join(WORK_PRECISION_PNG),
     )
     .map_err(plot)?;
+    if !report.variants.is_empty() {
+        write_log_log(
+            &LogLogPlot {
+                title: format!("{}: implicit step variants", report.scene),
+                x_label: "wall time (s)".into(),
+                y_label: "RMS distance from converged (m)".into(),
+                series: report
+                    .variant_series(|r| r.error_converged)
+                    .into_iter()
+                    .map(|(variant, points)| Series {
+                        label: variant.to_string(),
+                        points,
+                    })
+                    .collect(),
+                reference: Some(Reference {
+                    y: TARGET_ERROR,
+                    label: "1 mm".into(),
+                }),
+            },
+            &dir.join(VARIANTS_PNG),
+        )
+        .map_err(plot)?;
+    }
     write_log_log(
         &LogLogPlot {
             title: format!("{}: convergence", report.scene),
@@ -167,12 +242,68 @@ fn print_accuracy(report: &AccuracyReport, dir: &Path, out: &mut dyn Write) -> s
             name.name()
         )?;
     }
+    print_variants(report, out)?;
     writeln!(
         out,
-        "wrote {d}/{ACCURACY_JSON} (and .csv), {d}/{WORK_PRECISION_PNG} and \
-         {d}/{CONVERGENCE_PNG} (and .svg)",
+        "wrote {d}/{ACCURACY_JSON} (and .csv), {d}/{WORK_PRECISION_PNG}, {d}/{CONVERGENCE_PNG}{} \
+         (and .svg)",
+        if report.variants.is_empty() {
+            String::new()
+        } else {
+            format!(" and {}/{VARIANTS_PNG}", dir.display())
+        },
         d = dir.display()
     )
+}
+
+/// The step variants' table: at each step, the converged step's own cost,
+/// then each variant's iterations, wall time and distance from it.
+fn print_variants(report: &AccuracyReport, out: &mut dyn Write) -> std::io::Result<()> {
+    if report.variants.is_empty() {
+        return Ok(());
+    }
+    let number = |e: Option<f64>| e.map_or_else(|| "-".to_owned(), |e| format!("{e:.2e}"));
+    writeln!(
+        out,
+        "{:<28} {:>10} {:>12} {:>13} {:>14}",
+        "backward-euler step", "its/step", "wall (s)", "from conv. (m)", "error at end (m)"
+    )?;
+    for c in &report.converged {
+        writeln!(
+            out,
+            "{:<28} {:>10.1} {:>12.3e} {:>13} {:>14}   (h = {:.3e} s{})",
+            "newton:1e-9 (converged)",
+            c.iterations_per_step,
+            c.wall_s,
+            "0",
+            number(c.error_rms),
+            c.step,
+            if c.unconverged_steps > 0 {
+                format!(", {} steps unconverged", c.unconverged_steps)
+            } else {
+                String::new()
+            }
+        )?;
+        for r in report
+            .variants
+            .iter()
+            .filter(|r| r.dt.to_bits() == c.dt.to_bits())
+        {
+            writeln!(
+                out,
+                "{:<28} {:>10.1} {:>12.3e} {:>13} {:>14}{}",
+                r.variant.to_string(),
+                r.iterations_per_step,
+                r.wall_s,
+                number(r.error_converged),
+                number(r.error_rms),
+                r.failure
+                    .as_ref()
+                    .map_or_else(String::new, |f| format!("   failed: {f}"))
+            )?;
+        }
+    }
+    Ok(())
 }
 
 impl LabReport for AccuracyReport {

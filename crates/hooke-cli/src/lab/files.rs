@@ -22,6 +22,8 @@ pub const ACCURACY_JSON: &str = "accuracy.json";
 pub const WORK_PRECISION_PNG: &str = "work_precision.png";
 /// `convergence.png` (and `.svg`).
 pub const CONVERGENCE_PNG: &str = "convergence.png";
+/// `variants.png` (and `.svg`).
+pub const VARIANTS_PNG: &str = "variants.png";
 
 /// Creates `dir` if it is missing.
 pub(super) fn create_dir(dir: &Path) -> Result<(), CliError> {

@@ -79,6 +79,15 @@
 //! must lie in the range, else the order is `null`. For Dormand–Prince, `h`
 //! is its mean substep and the order only indicative.
 //!
+//! # Step variants
+//!
+//! With [`AccuracyOptions::variants`], backward Euler's step is also run
+//! carried out in each of those ways — Newton or L-BFGS to a tolerance,
+//! linearised, fast mass-spring at a fixed iteration count — at each of
+//! [`AccuracyOptions::variant_dts`], and each run is compared with the same
+//! step converged tightly: what stopping early costs, against what it
+//! saves in run time ([`variants`]).
+//!
 //! # Timing
 //!
 //! Each run is repeated `repeat` times and its wall time is the median of
@@ -110,6 +119,7 @@ mod options;
 mod order;
 mod reference;
 mod report;
+pub mod variants;
 
 use hooke_scenes::Scene;
 
@@ -120,6 +130,7 @@ pub use reference::AxialOscillator;
 use reference::REFERENCE_METHOD;
 use reference::rms;
 pub use report::{AccuracyReport, Order, ReferenceKind, ReferenceReport, Run, Series};
+pub use variants::{ConvergedRun, StepVariant, VariantRun};
 
 use crate::LabError;
 use crate::spectrum::omega_max;
@@ -163,7 +174,13 @@ pub fn accuracy(
     if let Some(shard) = options.shard {
         jobs = shard.deal(&jobs);
     }
-    let total = jobs.len() + 1;
+    let with_variants = options.shard.is_none_or(|s| s.index == 0) && !options.variants.is_empty();
+    let variant_runs = if with_variants {
+        options.variant_dts.len() * (options.variants.len() + 1)
+    } else {
+        0
+    };
+    let total = jobs.len() + 1 + variant_runs;
     let (checkpoints, reference) = reference(system, &free, options, omega)?;
     progress(1, total);
     let mut runs = Vec::with_capacity(jobs.len());
@@ -171,6 +188,15 @@ pub fn accuracy(
         runs.push(measure(system, &free, job, options, &checkpoints)?);
         progress(done + 2, total);
     }
+    let (converged, variants) = if with_variants {
+        let mut done = jobs.len() + 1;
+        variants::measure_variants(system, &free, options, &checkpoints, &mut || {
+            done += 1;
+            progress(done, total);
+        })?
+    } else {
+        (Vec::new(), Vec::new())
+    };
     let initial = system.initial_positions();
     let mut report = AccuracyReport {
         scene: scene.name.clone(),
@@ -189,6 +215,8 @@ pub fn accuracy(
         reference,
         runs,
         orders: Vec::new(),
+        converged,
+        variants,
         note,
         shard: options.shard,
     };

@@ -2,6 +2,7 @@
 
 use hooke_scenes::Scene;
 
+use super::StepVariant;
 use crate::spectrum::omega_max;
 use crate::{LabError, Method, Range, Settings, Shard};
 
@@ -37,7 +38,13 @@ pub struct AccuracyOptions {
     pub reference_dt: Option<f64>,
     /// Run only this part of the runs (every part computes the
     /// reference): the report is then partial, for [`merge`](crate::merge).
+    /// Part 0 runs the step variants.
     pub shard: Option<Shard>,
+    /// Backward Euler's step variants to compare with its tightly
+    /// converged step (see the `variants` module).
+    pub variants: Vec<StepVariant>,
+    /// The steps at which the variants run, s.
+    pub variant_dts: Vec<f64>,
 }
 
 impl AccuracyOptions {
@@ -46,7 +53,7 @@ impl AccuracyOptions {
     /// implicit methods, the explicit methods well resolved at the small
     /// end); tolerances 10⁻³…10⁻⁹; the scene's duration; 10 frames; 3
     /// repeats; the scene's implicit and adaptive parameters; the automatic
-    /// reference.
+    /// reference; no step variants, to be run at the scene's step.
     #[must_use]
     pub fn for_scene(scene: &Scene) -> Self {
         let omega = omega_max(&scene.system).omega_max;
@@ -65,6 +72,8 @@ impl AccuracyOptions {
             reference: ReferenceChoice::Auto,
             reference_dt: None,
             shard: None,
+            variants: Vec::new(),
+            variant_dts: vec![scene.timing.dt],
         }
     }
 
@@ -84,6 +93,12 @@ impl AccuracyOptions {
         positive("duration", self.duration)?;
         at_least_one("frames", self.frames)?;
         at_least_one("repeat", self.repeat)?;
+        if !self.variants.is_empty() {
+            at_least_one("variant steps", self.variant_dts.len())?;
+        }
+        self.variant_dts
+            .iter()
+            .try_for_each(|&dt| positive("variant dt", dt))?;
         self.reference_dt
             .map_or(Ok(()), |dt| positive("reference dt", dt))
     }

@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::{ConvergedRun, StepVariant, VariantRun};
 use crate::{Method, Shard};
 
 /// The kind of reference.
@@ -124,6 +125,13 @@ pub struct AccuracyReport {
     /// collide (it ran without self-collision).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub note: Option<String>,
+    /// Backward Euler tightly converged at each variant step (empty without
+    /// variants).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub converged: Vec<ConvergedRun>,
+    /// The step variants' runs, by step, then variant.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub variants: Vec<VariantRun>,
     /// The part of the runs this report holds, if it is partial: its runs
     /// are not yet marked resolved and it has no orders until
     /// [`merge`](crate::merge) combines it with the other parts.
@@ -176,6 +184,31 @@ impl AccuracyReport {
     #[must_use]
     pub fn convergence(&self) -> Vec<Series> {
         self.series(|r| r.step, |r| r.error_max)
+    }
+
+    /// Each step variant's points `(wall_s, y)` over its steps, runs
+    /// without a `y` left out: `y` the error against the converged step
+    /// ([`VariantRun::error_converged`]) or against the reference
+    /// ([`VariantRun::error_rms`]).
+    #[must_use]
+    pub fn variant_series(
+        &self,
+        y: impl Fn(&VariantRun) -> Option<f64>,
+    ) -> Vec<(StepVariant, Vec<(f64, f64)>)> {
+        let mut series: Vec<(StepVariant, Vec<(f64, f64)>)> = Vec::new();
+        for r in &self.variants {
+            let index = match series.iter().position(|(v, _)| *v == r.variant) {
+                Some(i) => i,
+                None => {
+                    series.push((r.variant, Vec::new()));
+                    series.len() - 1
+                }
+            };
+            if let Some(e) = y(r) {
+                series[index].1.push((r.wall_s, e));
+            }
+        }
+        series
     }
 
     /// Each method's least wall time among its runs with
