@@ -284,6 +284,12 @@ fn print_variants(report: &AccuracyReport, out: &mut dyn Write) -> std::io::Resu
                 String::new()
             }
         )?;
+        if let Some(failure) = &c.failure {
+            writeln!(
+                out,
+                "  the converged step failed ({failure}): no variants at this step"
+            )?;
+        }
         for r in report
             .variants
             .iter()
