@@ -3,7 +3,10 @@
 
 use std::ops::ControlFlow;
 
-use hooke_core::{ObserveFn, Simulation, State, StepInfo, System};
+use hooke_core::{
+    Integrator, ObserveFn, Observer, ParameterError, Run as Simulated, Simulation, State, StepInfo,
+    System,
+};
 
 use super::reference::{
     AxialOscillator, Checkpoints, REFERENCE_METHOD, numerical, rms, steps_per_interval,
@@ -131,29 +134,20 @@ pub(super) fn measure(
     options: &AccuracyOptions,
     checkpoints: &Checkpoints,
 ) -> Result<Run, LabError> {
-    let steps = job.per_frame * options.frames;
     let mut errors = Vec::with_capacity(options.frames);
-    let mut integrator = options.settings.build(job.method, job.tolerance)?;
-    let mut state = system.initial_state();
     let mut measure_error = ObserveFn(|_: &System, state: &State, step: &StepInfo| {
         if let Some(x) = checkpoints.get(step.index / job.per_frame - 1) {
             errors.push(rms(free, state.positions(), x));
         }
         ControlFlow::Continue(())
     });
-    let first = Simulation::new(system, &mut integrator)
-        .observe(job.per_frame, &mut measure_error)
-        .run_to_end(&mut state, job.step, steps);
-    let mut walls = vec![first.wall.as_secs_f64()];
-    if first.failure().is_none() {
-        for _ in 1..options.repeat {
-            let mut integrator = options.settings.build(job.method, job.tolerance)?;
-            let mut state = system.initial_state();
-            let again =
-                Simulation::new(system, &mut integrator).run_to_end(&mut state, job.step, steps);
-            walls.push(again.wall.as_secs_f64());
-        }
-    }
+    let (first, wall_s) = repeated(
+        system,
+        &|| options.settings.build(job.method, job.tolerance),
+        (job.step, job.per_frame),
+        options,
+        &mut measure_error,
+    )?;
     let complete = first.failure().is_none() && errors.len() == options.frames;
     let finite = |e: f64| (complete && e.is_finite()).then_some(e);
     let error_rms = errors.last().copied().and_then(finite);
@@ -172,7 +166,7 @@ pub(super) fn measure(
         steps: run_steps,
         error_rms,
         error_max,
-        wall_s: median(&mut walls),
+        wall_s,
         force_evaluations: first.report.force_evaluations,
         linear_iterations: first.report.linear_iterations,
         linear_solves: first.report.linear_solves,
@@ -181,8 +175,39 @@ pub(super) fn measure(
     })
 }
 
+/// Runs `build`'s integrator from rest for `options.frames` intervals of
+/// `per_frame` steps of `step`, calling `observer` at the end of each
+/// interval, then `options.repeat − 1` more times unobserved for their
+/// wall time (none if the first run failed): the first run, and the median
+/// of all the runs' wall times inside the steps, s.
+pub(super) fn repeated(
+    system: &System,
+    build: &dyn Fn() -> Result<Box<dyn Integrator + Send>, ParameterError>,
+    (step, per_frame): (f64, usize),
+    options: &AccuracyOptions,
+    observer: &mut dyn Observer,
+) -> Result<(Simulated, f64), LabError> {
+    let steps = per_frame * options.frames;
+    let mut integrator = build()?;
+    let mut state = system.initial_state();
+    let first = Simulation::new(system, &mut integrator)
+        .observe(per_frame, observer)
+        .run_to_end(&mut state, step, steps);
+    let mut walls = vec![first.wall.as_secs_f64()];
+    if first.failure().is_none() {
+        for _ in 1..options.repeat {
+            let mut integrator = build()?;
+            let mut state = system.initial_state();
+            let again =
+                Simulation::new(system, &mut integrator).run_to_end(&mut state, step, steps);
+            walls.push(again.wall.as_secs_f64());
+        }
+    }
+    Ok((first, median(&mut walls)))
+}
+
 /// The median of `values` (the mean of the middle two for an even count).
-pub(super) fn median(values: &mut [f64]) -> f64 {
+fn median(values: &mut [f64]) -> f64 {
     values.sort_by(f64::total_cmp);
     let n = values.len();
     match n {

@@ -25,13 +25,13 @@
 use std::ops::ControlFlow;
 use std::str::FromStr;
 
-use hooke_core::{Integrator, ObserveFn, ParameterError, Simulation, State, StepInfo, System};
+use hooke_core::{Integrator, ObserveFn, ParameterError, State, StepInfo, System};
 use hooke_implicit::{FastMassSpring, LinearSolver, Minimizer};
 use hooke_scenes::IntegratorSpec;
 use serde::{Deserialize, Serialize};
 
 use super::AccuracyOptions;
-use super::measure::median;
+use super::measure::repeated;
 use super::reference::{Checkpoints, rms, steps_per_interval};
 use crate::{LabError, Method, Settings};
 
@@ -211,8 +211,8 @@ struct Timed {
 }
 
 /// Runs `build`'s integrator `per_frame · frames` steps of `step` from
-/// rest, `repeat` times (once if it fails), keeping the first run's
-/// positions at the checkpoints.
+/// rest, `repeat` times (once if it fails, [`repeated`]), keeping the first
+/// run's positions at the checkpoints.
 fn timed(
     system: &System,
     build: &dyn Fn() -> Result<Box<dyn Integrator + Send>, ParameterError>,
@@ -220,34 +220,19 @@ fn timed(
     step: f64,
     options: &AccuracyOptions,
 ) -> Result<Timed, LabError> {
-    let steps = per_frame * options.frames;
     let mut checkpoints = Vec::with_capacity(options.frames);
     let mut keep = ObserveFn(|_: &System, state: &State, _: &StepInfo| {
         checkpoints.push(state.positions().to_vec());
         ControlFlow::Continue(())
     });
-    let mut integrator = build()?;
-    let mut state = system.initial_state();
-    let first = Simulation::new(system, &mut integrator)
-        .observe(per_frame, &mut keep)
-        .run_to_end(&mut state, step, steps);
-    let mut walls = vec![first.wall.as_secs_f64()];
-    if first.failure().is_none() {
-        for _ in 1..options.repeat {
-            let mut integrator = build()?;
-            let mut state = system.initial_state();
-            let again =
-                Simulation::new(system, &mut integrator).run_to_end(&mut state, step, steps);
-            walls.push(again.wall.as_secs_f64());
-        }
-    }
+    let (first, wall_s) = repeated(system, build, (step, per_frame), options, &mut keep)?;
     let failure = first
         .failure()
         .map(ToString::to_string)
         .or_else(|| (checkpoints.len() != options.frames).then(|| "stopped early".to_owned()));
     Ok(Timed {
         checkpoints,
-        wall_s: median(&mut walls),
+        wall_s,
         iterations_per_step: first.report.newton_iterations as f64 / first.steps.max(1) as f64,
         unconverged_steps: first.report.unconverged_steps,
         failure,
