@@ -292,7 +292,7 @@ impl Tet {
             0.0
         };
         // `k ∇ₐJ ∇_bJᵀ + [d]×` with `d = E'(x_s − x_r)/6V₀`, written out.
-        let scaled = [0, 1, 2, 3].map(|a| stiffness * dj[a]);
+        let scaled = dj.map(|g| stiffness * g);
         let mut pairs = [Mat3::zeros(); 6];
         for (pair, &(a, b, r, s)) in pairs.iter_mut().zip(&ODD_PERMUTATION_PAIRS) {
             let (u, w, d) = (scaled[a], dj[b], curvature * (p[s] - p[r]));
