@@ -169,6 +169,8 @@ fn accuracy_writes_runs_orders_and_both_plots() {
             "error_rms",
             "wall_s",
             "iterations_per_step",
+            "unconverged_steps",
+            "rejected_steps",
         ] {
             assert!(run.get(key).is_some(), "{key} in {run}");
         }

@@ -256,6 +256,20 @@ fn print_accuracy(report: &AccuracyReport, dir: &Path, out: &mut dyn Write) -> s
     )
 }
 
+/// `"   N steps unconverged, M rejected"`, the parts that are not zero.
+fn irregular(unconverged: usize, rejected: usize) -> String {
+    let parts: Vec<String> = [(unconverged, "steps unconverged"), (rejected, "rejected")]
+        .into_iter()
+        .filter(|&(count, _)| count > 0)
+        .map(|(count, what)| format!("{count} {what}"))
+        .collect();
+    if parts.is_empty() {
+        String::new()
+    } else {
+        format!("   {}", parts.join(", "))
+    }
+}
+
 /// The step variants' table: at each step, the converged step's own cost,
 /// then each variant's iterations, wall time and distance from it.
 fn print_variants(report: &AccuracyReport, out: &mut dyn Write) -> std::io::Result<()> {
@@ -271,18 +285,14 @@ fn print_variants(report: &AccuracyReport, out: &mut dyn Write) -> std::io::Resu
     for c in &report.converged {
         writeln!(
             out,
-            "{:<28} {:>10.1} {:>12.3e} {:>13} {:>14}   (h = {:.3e} s{})",
+            "{:<28} {:>10.1} {:>12.3e} {:>13} {:>14}   (h = {:.3e} s){}",
             "newton:1e-9 (converged)",
             c.iterations_per_step,
             c.wall_s,
             "0",
             number(c.error_rms),
             c.step,
-            if c.unconverged_steps > 0 {
-                format!(", {} steps unconverged", c.unconverged_steps)
-            } else {
-                String::new()
-            }
+            irregular(c.unconverged_steps, c.rejected_steps),
         )?;
         if let Some(failure) = &c.failure {
             writeln!(
@@ -297,12 +307,13 @@ fn print_variants(report: &AccuracyReport, out: &mut dyn Write) -> std::io::Resu
         {
             writeln!(
                 out,
-                "{:<28} {:>10.1} {:>12.3e} {:>13} {:>14}{}",
+                "{:<28} {:>10.1} {:>12.3e} {:>13} {:>14}{}{}",
                 r.variant.to_string(),
                 r.iterations_per_step,
                 r.wall_s,
                 number(r.error_converged),
                 number(r.error_rms),
+                irregular(r.unconverged_steps, r.rejected_steps),
                 r.failure
                     .as_ref()
                     .map_or_else(String::new, |f| format!("   failed: {f}"))

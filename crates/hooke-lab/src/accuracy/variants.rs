@@ -175,6 +175,11 @@ pub struct VariantRun {
     pub wall_s: f64,
     /// Newton, L-BFGS or fast mass-spring iterations per step.
     pub iterations_per_step: f64,
+    /// Steps accepted without meeting the variant's tolerance (at their
+    /// step floor).
+    pub unconverged_steps: usize,
+    /// Substeps rejected and retried smaller.
+    pub rejected_steps: usize,
     /// Why the run stopped early, if it did.
     pub failure: Option<String>,
 }
@@ -193,6 +198,8 @@ pub struct ConvergedRun {
     pub iterations_per_step: f64,
     /// Steps accepted without meeting the tolerance (at their step floor).
     pub unconverged_steps: usize,
+    /// Substeps rejected and retried smaller.
+    pub rejected_steps: usize,
     /// The RMS error at the end against the measurement's reference, m.
     pub error_rms: Option<f64>,
     /// Why the run stopped early, if it did: the variants at this step are
@@ -201,12 +208,13 @@ pub struct ConvergedRun {
 }
 
 /// What a timed run gives: its checkpoints, median wall time, iterations
-/// per step, unconverged steps and failure.
+/// per step, unconverged and rejected steps, and failure.
 struct Timed {
     checkpoints: Checkpoints,
     wall_s: f64,
     iterations_per_step: f64,
     unconverged_steps: usize,
+    rejected_steps: usize,
     failure: Option<String>,
 }
 
@@ -235,6 +243,7 @@ fn timed(
         wall_s,
         iterations_per_step: first.report.newton_iterations as f64 / first.steps.max(1) as f64,
         unconverged_steps: first.report.unconverged_steps,
+        rejected_steps: first.report.rejected_steps,
         failure,
     })
 }
@@ -294,6 +303,7 @@ pub(super) fn measure_variants(
             wall_s: tight.wall_s,
             iterations_per_step: tight.iterations_per_step,
             unconverged_steps: tight.unconverged_steps,
+            rejected_steps: tight.rejected_steps,
             error_rms: end_error(&tight.checkpoints).filter(|_| !failed),
             failure: tight.failure,
         });
@@ -323,6 +333,8 @@ pub(super) fn measure_variants(
                     StepVariant::FastMassSpring(k) => k as f64,
                     _ => run.iterations_per_step,
                 },
+                unconverged_steps: run.unconverged_steps,
+                rejected_steps: run.rejected_steps,
                 failure: run.failure,
             });
         }
