@@ -22,7 +22,9 @@
 //! `(d² − ξ²)/(d + ξ)`, from the squared distances of
 //! [`distance`](super::distance).
 //!
-//! Here the last step is clamped to end at `τ = 1` (the motion is never
+//! Here a pair whose first step already covers the motion,
+//! `(1 − s) g₀ ≥ l_p`, returns `τ = 1` without a second distance; the last
+//! step is clamped to end at `τ = 1` (the motion is never
 //! extrapolated past the step), each position is recomputed from `xₖ + τ Δxₖ`
 //! (no drift), and the loop stops after 10⁶ steps with the `τ` reached (still
 //! conservative; a pair needs that many only when it starts very close and
@@ -108,6 +110,11 @@ fn accd(
     let target = keep * gap0;
     let mut tau = 0.0;
     let mut step = (1.0 - keep) * gap0 / lp;
+    // The whole motion in the first step: the gap stays above
+    // `gap0 − lp ≥ keep gap0` throughout.
+    if step >= 1.0 {
+        return 1.0;
+    }
     for _ in 0..MAX_ITERATIONS {
         let next = (tau + step).min(1.0);
         let g = gap_at(next);

@@ -7,6 +7,15 @@ use hooke_core::{System, Vec3};
 
 use super::pairs::{MARGIN, Pairs};
 
+/// How many times over a new proximity search's margin covers the motion
+/// that outgrew the last one.
+const MOTION_SLACK: f64 = 1.5;
+
+/// The widest margin, in units of the contact distance, of a proximity
+/// search that [`Pairs::limit`] makes for a motion; a longer motion gets a
+/// swept search.
+const MAX_MARGIN: f64 = 16.0;
+
 impl Pairs {
     /// The pairs within the contact distance at `x` and the smallest gap
     /// among them.
@@ -26,12 +35,36 @@ impl Pairs {
     }
 
     /// The largest `τ ∈ [0, 1]` such that the motion from `x` to `x + τ dx`
-    /// keeps every pair at least `keep` of its gap (additive CCD on the
-    /// pairs whose boxes, swept over the motion and inflated by the contact
-    /// distance `d̂` and the thickness, overlap — or on the Verlet list, when
-    /// the motion stays within its margin). Those pairs become the
-    /// candidates of [`Pairs::energy`] and [`Pairs::add`]: every pair within
-    /// reach at any point of the motion is among them.
+    /// keeps every pair at least `keep` of its gap (additive CCD), over
+    /// candidates that then hold every pair within reach at any point of
+    /// the motion, and become those of [`Pairs::energy`] and [`Pairs::add`]:
+    ///
+    /// - the Verlet list, while both ends of the motion lie within its
+    ///   margin;
+    /// - otherwise a new proximity search at `x` whose margin covers the
+    ///   motion `MOTION_SLACK` times over (at least the default
+    ///   margin), so that the smaller motions of the iterations after it
+    ///   keep its list — if that margin is at most [`MAX_MARGIN`] `d̂`;
+    /// - otherwise (a long motion) the pairs whose boxes, swept over the
+    ///   motion and inflated by the contact distance `d̂` and the
+    ///   thickness, overlap.
+    ///
+    /// On a Verlet list, a pair whose distance `D` at the list's positions
+    /// bounds its gap along the whole motion from below by more than
+    /// `keep` times the bound of its gap at `x` from above is skipped
+    /// without CCD: along a straight motion a particle is farthest from
+    /// its place in the list at one of the motion's ends (distance from a
+    /// point is convex), and a pair's gap moves by at most the farthest
+    /// move of each primitive's corners, so with `m` each particle's
+    /// distance from the list's positions at `x` and `M` the farther of it
+    /// at `x` and at `x + dx`,
+    ///
+    /// ```text
+    /// g(τ) ≥ D − max₁ M − max₂ M − ξ,   g(0) ≤ D + max₁ m + max₂ m − ξ,
+    /// ```
+    ///
+    /// and the pair keeps more than `keep g(0)` throughout, where CCD would
+    /// return 1.
     pub(crate) fn limit(
         &mut self,
         system: &System,
@@ -42,9 +75,14 @@ impl Pairs {
         self.end.clear();
         self.end.extend(x.iter().zip(dx).map(|(x, d)| x + d));
         if !(self.covers(x) && self.covers(&self.end)) {
-            let reach = (0.5 * MARGIN * activation).powi(2);
-            if dx.iter().all(|d| d.norm_squared() < reach) {
-                self.refresh(system, x, activation);
+            let longest = dx
+                .iter()
+                .map(|d| d.norm_squared())
+                .fold(0.0, f64::max)
+                .sqrt();
+            let margin = (MARGIN * activation).max(2.0 * MOTION_SLACK * longest);
+            if margin <= MAX_MARGIN * activation {
+                self.refresh(system, x, activation, margin);
             } else {
                 self.reference = None;
                 self.searched.clear();
@@ -57,8 +95,31 @@ impl Pairs {
                 );
             }
         }
+        if let Some(reference) = &self.reference {
+            self.moved.clear();
+            self.moved
+                .extend(reference.iter().zip(x).zip(&self.end).map(|((r, x), e)| {
+                    let now = (x - r).norm_squared();
+                    (now.sqrt(), now.max((e - r).norm_squared()).sqrt())
+                }));
+        }
         let mut tau: f64 = 1.0;
-        for pair in Self::pairs(system, &self.near) {
+        for (k, pair) in Self::pairs(system, &self.near).enumerate() {
+            if let Some(&searched) = self.searched.get(k) {
+                let split = if pair.edges { 2 } else { 1 };
+                let farthest = |range: std::ops::Range<usize>| {
+                    range.fold((0.0, 0.0), |(now, along): (f64, f64), c| {
+                        let (m, big_m) = self.moved[pair.particles[c]];
+                        (now.max(m), along.max(big_m))
+                    })
+                };
+                let (first, second) = (farthest(0..split), farthest(split..4));
+                let lowest = searched - first.1 - second.1 - pair.thickness;
+                let highest = searched + first.0 + second.0 - pair.thickness;
+                if lowest > keep * highest {
+                    continue;
+                }
+            }
             let (q, d) = (pair.positions(x), pair.particles.map(|p| dx[p]));
             let t = if pair.edges {
                 edge_edge_ccd(q, d, pair.thickness, keep)

@@ -68,6 +68,9 @@ pub(crate) struct Pairs {
     pub(super) thickest: f64,
     /// Scratch for the end of a motion.
     pub(super) end: Vec<Vec3>,
+    /// Scratch for each particle's distance from [`Pairs::reference`] at
+    /// the start of a motion, and the farthest it gets along the motion.
+    pub(super) moved: Vec<(f64, f64)>,
 }
 
 /// One pair's particles, its thickness, and whether it is an edge–edge
@@ -135,7 +138,7 @@ impl Pairs {
     /// list while `x` lies within its margin, otherwise searches anew.
     pub(crate) fn search(&mut self, system: &System, x: &[Vec3], activation: f64) {
         if !self.covers(x) {
-            self.refresh(system, x, activation);
+            self.refresh(system, x, activation, MARGIN * activation);
         }
     }
 
@@ -148,9 +151,10 @@ impl Pairs {
         })
     }
 
-    /// A proximity search at `x` with the margin (see the type's docs).
-    pub(super) fn refresh(&mut self, system: &System, x: &[Vec3], activation: f64) {
-        self.margin = MARGIN * activation;
+    /// A proximity search at `x` with the margin `margin` (see the type's
+    /// docs).
+    pub(super) fn refresh(&mut self, system: &System, x: &[Vec3], activation: f64, margin: f64) {
+        self.margin = margin;
         self.broad.proximity(
             system.surfaces(),
             x,
@@ -479,6 +483,67 @@ mod tests {
                 (filtered - all).abs() <= f64::EPSILON * all,
                 "{filtered} J, {all} J"
             );
+        }
+    }
+
+    #[test]
+    fn the_line_search_limit_skips_only_pairs_that_ccd_clears_and_covers_the_motion() {
+        use hooke_core::collision::ccd::{edge_edge_ccd, point_triangle_ccd};
+        let (system, d_hat, x0, mut pairs) = searched_sheets();
+        let keep = 0.1;
+        let mut everything = Candidates::default();
+        BroadPhase::default().proximity(system.surfaces(), &x0, 1.0, &mut everything);
+        let mut unit = uniform(5);
+        // Motions within the Verlet list's margin, beyond it (a new list
+        // whose margin covers the motion) and far beyond it (a swept
+        // search), each particle in its own direction.
+        for (size, kept) in [(1.9, Some(true)), (3.0, Some(false)), (12.0, None)] {
+            let dx: Vec<Vec3> = x0
+                .iter()
+                .map(|_| {
+                    size * d_hat * (unit() + 0.5) * Vec3::new(unit(), unit(), unit()).normalize()
+                })
+                .collect();
+            let tau = pairs.limit(&system, &x0, &dx, (keep, d_hat));
+            match kept {
+                Some(true) => assert_eq!(pairs.reference.as_deref(), Some(&x0[..])),
+                Some(false) => {
+                    assert!(pairs.margin > 2.0 * size * d_hat, "margin {}", pairs.margin);
+                    let end: Vec<Vec3> = x0.iter().zip(&dx).map(|(x, d)| x + d).collect();
+                    assert!(pairs.covers(&x0) && pairs.covers(&end));
+                }
+                None => assert!(pairs.reference.is_none(), "motions of {size} d̂"),
+            }
+            // The bound skipped no pair whose CCD stops the motion.
+            let unpruned = Pairs::pairs(&system, &pairs.near)
+                .map(|pair| {
+                    let (q, d) = (pair.positions(&x0), pair.particles.map(|p| dx[p]));
+                    if pair.edges {
+                        edge_edge_ccd(q, d, pair.thickness, keep)
+                    } else {
+                        point_triangle_ccd(q, d, pair.thickness, keep)
+                    }
+                })
+                .fold(1.0, f64::min);
+            assert_eq!(
+                tau.to_bits(),
+                unpruned.to_bits(),
+                "motions of {size} d̂: {tau} against {unpruned}"
+            );
+            // Every pair within d̂ anywhere along the motion is a candidate.
+            let listed = |particles: [usize; 4]| {
+                Pairs::pairs(&system, &pairs.near).any(|p| p.particles == particles)
+            };
+            let mut close = 0;
+            for step in 0..=10 {
+                let t = f64::from(step) / 10.0;
+                let x: Vec<Vec3> = x0.iter().zip(&dx).map(|(x, d)| x + t * d).collect();
+                for pair in within(&system, &everything, &x, d_hat) {
+                    close += 1;
+                    assert!(listed(pair), "motions of {size} d̂: {pair:?} at τ = {t}");
+                }
+            }
+            assert!(close > 0, "motions of {size} d̂ bring no pair within d̂");
         }
     }
 }
