@@ -2,7 +2,6 @@
 //! distance, and the step along a motion that no pair crosses (additive
 //! continuous collision detection).
 
-use hooke_core::collision::ccd::{edge_edge_ccd, point_triangle_ccd};
 use hooke_core::{System, Vec3};
 
 use super::pairs::{MARGIN, Pairs};
@@ -106,27 +105,15 @@ impl Pairs {
         let mut tau: f64 = 1.0;
         for (k, pair) in Self::pairs(system, &self.near).enumerate() {
             if let Some(&searched) = self.searched.get(k) {
-                let split = if pair.edges { 2 } else { 1 };
-                let farthest = |range: std::ops::Range<usize>| {
-                    range.fold((0.0, 0.0), |(now, along): (f64, f64), c| {
-                        let (m, big_m) = self.moved[pair.particles[c]];
-                        (now.max(m), along.max(big_m))
-                    })
-                };
-                let (first, second) = (farthest(0..split), farthest(split..4));
-                let lowest = searched - first.1 - second.1 - pair.thickness;
-                let highest = searched + first.0 + second.0 - pair.thickness;
+                let now = pair.largest(|p| self.moved[p].0);
+                let along = pair.largest(|p| self.moved[p].1);
+                let lowest = searched - along.0 - along.1 - pair.thickness;
+                let highest = searched + now.0 + now.1 - pair.thickness;
                 if lowest > keep * highest {
                     continue;
                 }
             }
-            let (q, d) = (pair.positions(x), pair.particles.map(|p| dx[p]));
-            let t = if pair.edges {
-                edge_edge_ccd(q, d, pair.thickness, keep)
-            } else {
-                point_triangle_ccd(q, d, pair.thickness, keep)
-            };
-            tau = tau.min(t);
+            tau = tau.min(pair.ccd(x, dx, keep));
         }
         tau
     }

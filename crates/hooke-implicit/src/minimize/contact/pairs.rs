@@ -17,6 +17,7 @@
 use hooke_core::collision::barrier::barrier;
 use hooke_core::collision::barrier::{mollified_pair_barrier, pair_barrier};
 use hooke_core::collision::broad::{BroadPhase, Candidates};
+use hooke_core::collision::ccd::{edge_edge_ccd, point_triangle_ccd};
 use hooke_core::collision::distance::{
     Derivatives, edge_edge_closest, edge_edge_mollifier, edge_edge_squared, mollifier_threshold,
     point_triangle_closest, point_triangle_squared,
@@ -87,6 +88,26 @@ pub(super) struct Pair {
 impl Pair {
     pub(super) fn positions(&self, x: &[Vec3]) -> [Vec3; 4] {
         self.particles.map(|p| x[p])
+    }
+
+    /// The largest of `value(p)` over the particles `p` of the pair's first
+    /// primitive (the point, or the first edge), and over its second's.
+    pub(super) fn largest(&self, value: impl Fn(usize) -> f64) -> (f64, f64) {
+        let split = if self.edges { 2 } else { 1 };
+        let (first, second) = self.particles.split_at(split);
+        let largest = |ps: &[usize]| ps.iter().map(|&p| value(p)).fold(0.0, f64::max);
+        (largest(first), largest(second))
+    }
+
+    /// The largest `τ ∈ [0, 1]` that additive CCD allows the pair along
+    /// the motion from `x` to `x + τ dx`, keeping at least `keep` of its gap.
+    pub(super) fn ccd(&self, x: &[Vec3], dx: &[Vec3], keep: f64) -> f64 {
+        let (q, d) = (self.positions(x), self.particles.map(|p| dx[p]));
+        if self.edges {
+            edge_edge_ccd(q, d, self.thickness, keep)
+        } else {
+            point_triangle_ccd(q, d, self.thickness, keep)
+        }
     }
 }
 
@@ -179,14 +200,8 @@ impl Pairs {
         let (Some(reference), Some(&searched)) = (&self.reference, self.searched.get(index)) else {
             return false;
         };
-        let moved = |k: usize| {
-            let p = pair.particles[k];
-            (x[p] - reference[p]).norm_squared()
-        };
-        let split = if pair.edges { 2 } else { 1 };
-        let first = (0..split).map(moved).fold(0.0, f64::max).sqrt();
-        let second = (split..4).map(moved).fold(0.0, f64::max).sqrt();
-        searched - first - second - pair.thickness >= activation
+        let (first, second) = pair.largest(|p| (x[p] - reference[p]).norm_squared());
+        searched - first.sqrt() - second.sqrt() - pair.thickness >= activation
     }
 
     /// The squared distance of a pair at `x`, without derivatives.
@@ -488,7 +503,6 @@ mod tests {
 
     #[test]
     fn the_line_search_limit_skips_only_pairs_that_ccd_clears_and_covers_the_motion() {
-        use hooke_core::collision::ccd::{edge_edge_ccd, point_triangle_ccd};
         let (system, d_hat, x0, mut pairs) = searched_sheets();
         let keep = 0.1;
         let mut everything = Candidates::default();
@@ -516,14 +530,7 @@ mod tests {
             }
             // The bound skipped no pair whose CCD stops the motion.
             let unpruned = Pairs::pairs(&system, &pairs.near)
-                .map(|pair| {
-                    let (q, d) = (pair.positions(&x0), pair.particles.map(|p| dx[p]));
-                    if pair.edges {
-                        edge_edge_ccd(q, d, pair.thickness, keep)
-                    } else {
-                        point_triangle_ccd(q, d, pair.thickness, keep)
-                    }
-                })
+                .map(|pair| pair.ccd(&x0, &dx, keep))
                 .fold(1.0, f64::min);
             assert_eq!(
                 tau.to_bits(),
