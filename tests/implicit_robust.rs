@@ -215,12 +215,13 @@ fn a_chain_with_a_million_fold_mass_ratio_never_gains_energy() {
 /// `½h² [k (L/l − 1) w² − F²/μ] = 0.04 h²` J (the chord of the rotation
 /// lengthens the compressed spring; `w = 1 m/s` the relative speed,
 /// `F = 0.1 N`, `μ = ½ kg`), while scaling the velocities within the
-/// Newton tolerance `η` absorbs about `η ‖v‖²_M = η · 0.5` J. At the
-/// default `η = 10⁻⁴` a step of 0.1 s gains ≈ 4·10⁻⁴ J, eight times that:
-/// it is rejected and halved until the gain is absorbed (`h ≤ 0.035 s`),
-/// with no last-resort correction; at `η = 10⁻¹⁰` only the floor takes
-/// the steps, each corrected by the last resort. Without the allowance
-/// every step would be cut to the floor, as at `η = 10⁻¹⁰`.
+/// Newton tolerance `η` absorbs about `η ‖v‖²_M = η · 0.5` J. At
+/// `η = 10⁻⁴` a step of 0.1 s gains ≈ 4·10⁻⁴ J, eight times that: it is
+/// rejected and halved until the gain is absorbed (`h ≤ 0.035 s`), with
+/// no last-resort correction; at `η = 10⁻¹⁰` only the floor takes the
+/// steps, each corrected by the last resort. Without the allowance every
+/// step would be cut to the floor, as at `η = 10⁻¹⁰`. At the default
+/// `η = 5·10⁻³` the allowance, 2.5·10⁻³ J, takes the 0.1 s step whole.
 #[test]
 fn a_spinning_compressed_spring_gains_are_absorbed_only_within_the_newton_tolerance() {
     let mut b = SystemBuilder::new();
@@ -243,7 +244,16 @@ fn a_spinning_compressed_spring_gains_are_absorbed_only_within_the_newton_tolera
         );
         report
     };
-    let report = run(Implicit::NEWTON_TOLERANCE);
+    let default = run(Implicit::NEWTON_TOLERANCE);
+    assert_eq!(default.accepted_steps, 1, "{default:?}");
+    assert_eq!(default.energy_corrections, 0, "{default:?}");
+    let whole = 0.04 * 0.1 * 0.1;
+    assert!(
+        default.energy_excess > 0.5 * whole && default.energy_excess < whole,
+        "gain {} J, predicted about {whole} J",
+        default.energy_excess
+    );
+    let report = run(1e-4);
     // 0.1 s and 0.05 s rejected, four substeps of 0.025 s taken, each
     // gaining about 0.04 · 0.025² J that the kinetic energy absorbed.
     assert_eq!(report.accepted_steps, 4, "{report:?}");
