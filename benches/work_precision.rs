@@ -40,6 +40,15 @@ fn cloth(n: usize) -> System {
     b.build().unwrap()
 }
 
+/// Backward Euler converged to `tolerance` with Cholesky (the reference,
+/// and the floor).
+fn converged(tolerance: f64) -> Implicit {
+    Implicit::backward_euler()
+        .with_solver(LinearSolver::Cholesky)
+        .with_newton(1000, tolerance)
+        .unwrap()
+}
+
 /// A variant: its label and a fresh integrator.
 type Variant = (String, Box<dyn Fn() -> Box<dyn Integrator>>);
 
@@ -62,14 +71,7 @@ fn variants() -> Vec<Variant> {
     // the buckling of the cloth amplifying the last digits of each step.
     all.push((
         "Newton, Cholesky, 1e-6 (floor)".into(),
-        Box::new(|| {
-            Box::new(
-                Implicit::backward_euler()
-                    .with_solver(LinearSolver::Cholesky)
-                    .with_newton(1000, 1e-6)
-                    .unwrap(),
-            )
-        }),
+        Box::new(|| Box::new(converged(1e-6))),
     ));
     for tol in [3e-2, 1e-2, 3e-3, 1e-3, 1e-4] {
         all.push((format!("Newton, {tol:e}"), Box::new(newton(tol))));
@@ -177,10 +179,7 @@ fn main() -> std::io::Result<()> {
     writeln!(out, "|---|---|---|---|---|---|---|")?;
     for n in sizes {
         let system = cloth(n);
-        let mut reference = Implicit::backward_euler()
-            .with_solver(LinearSolver::Cholesky)
-            .with_newton(1000, 1e-9)
-            .unwrap();
+        let mut reference = converged(1e-9);
         let (exact, seconds, iterations, _) = run(&system, &mut reference);
         writeln!(
             out,
