@@ -4,7 +4,7 @@
 
 use hooke_core::{System, Vec3};
 
-use super::pairs::{MARGIN, Pairs};
+use super::pairs::{Pairs, drift};
 
 /// How many times over a new proximity search's margin covers the motion
 /// that outgrew the last one.
@@ -20,10 +20,7 @@ impl Pairs {
     /// among them.
     pub(crate) fn closest(&self, system: &System, x: &[Vec3], activation: f64) -> (usize, f64) {
         let (mut count, mut smallest) = (0, f64::INFINITY);
-        for (k, pair) in Self::pairs(system, &self.near).enumerate() {
-            if self.far(k, &pair, x, activation) {
-                continue;
-            }
+        for pair in self.reachable(system, x, activation) {
             let gap = Self::gap(&pair, Self::squared(&pair, x));
             if gap < activation {
                 count += 1;
@@ -39,24 +36,27 @@ impl Pairs {
     /// the motion, and become those of [`Pairs::energy`] and [`Pairs::add`]:
     ///
     /// - the Verlet list, while both ends of the motion lie within its
-    ///   margin;
+    ///   margin (each moved by its particles' common translation);
     /// - otherwise a new proximity search at `x` whose margin covers the
-    ///   motion `MOTION_SLACK` times over (at least the default
-    ///   margin), so that the smaller motions of the iterations after it
-    ///   keep its list — if that margin is at most [`MAX_MARGIN`] `d̂`;
+    ///   motion (its common translation taken off) `MOTION_SLACK` times
+    ///   over (at least the default margin), so that the smaller motions
+    ///   of the iterations after it keep its list — if that margin is at
+    ///   most [`MAX_MARGIN`] `d̂` and the widest margin of a search;
     /// - otherwise (a long motion) the pairs whose boxes, swept over the
     ///   motion and inflated by the contact distance `d̂` and the
-    ///   thickness, overlap.
+    ///   thickness, overlap, with their distances at `x`.
     ///
-    /// On a Verlet list, a pair whose distance `D` at the list's positions
-    /// bounds its gap along the whole motion from below by more than
-    /// `keep` times the bound of its gap at `x` from above is skipped
-    /// without CCD: along a straight motion a particle is farthest from
+    /// A pair whose distance `D` at the list's positions (`x` after a
+    /// swept search) bounds its gap along the whole motion from below by
+    /// more than `keep` times the bound of its gap at `x` from above is
+    /// skipped without CCD: along a straight motion a particle is farthest from
     /// its place in the list at one of the motion's ends (distance from a
-    /// point is convex), and a pair's gap moves by at most the farthest
-    /// move of each primitive's corners, so with `m` each particle's
-    /// distance from the list's positions at `x` and `M` the farther of it
-    /// at `x` and at `x + dx`,
+    /// point is convex, and the common translations `t₀` at `x` and `t₁` at
+    /// `x + dx` taken off move straight between them), and a pair's gap
+    /// moves by at most the farthest move of each primitive's corners, so
+    /// with `m` each particle's distance from its place in the list at `x`
+    /// (less `t₀`) and `M` the farther of it at `x` and at `x + dx` (less
+    /// `t₁`),
     ///
     /// ```text
     /// g(τ) ≥ D − max₁ M − max₂ M − ξ,   g(0) ≤ D + max₁ m + max₂ m − ξ,
@@ -74,44 +74,33 @@ impl Pairs {
         self.end.clear();
         self.end.extend(x.iter().zip(dx).map(|(x, d)| x + d));
         if !(self.covers(x) && self.covers(&self.end)) {
-            let longest = dx
-                .iter()
-                .map(|d| d.norm_squared())
-                .fold(0.0, f64::max)
-                .sqrt();
-            let margin = (MARGIN * activation).max(2.0 * MOTION_SLACK * longest);
-            if margin <= MAX_MARGIN * activation {
+            let longest = drift(x, &self.end).1;
+            let margin = self
+                .default_margin(activation)
+                .max(2.0 * MOTION_SLACK * longest);
+            if margin <= (MAX_MARGIN * activation).min(self.widest) {
                 self.refresh(system, x, activation, margin);
             } else {
-                self.reference = None;
-                self.searched.clear();
-                self.broad.swept(
-                    system.surfaces(),
-                    x,
-                    &self.end,
-                    activation + self.thickest,
-                    &mut self.near,
-                );
+                self.swept(system, x, activation);
             }
         }
-        if let Some(reference) = &self.reference {
-            self.moved.clear();
-            self.moved
-                .extend(reference.iter().zip(x).zip(&self.end).map(|((r, x), e)| {
-                    let now = (x - r).norm_squared();
-                    (now.sqrt(), now.max((e - r).norm_squared()).sqrt())
-                }));
-        }
+        let reference = &self.reference;
+        let (start, end) = (drift(reference, x).0, drift(reference, &self.end).0);
+        self.moved.clear();
+        self.moved
+            .extend(reference.iter().zip(x).zip(&self.end).map(|((r, x), e)| {
+                let now = (x - r - start).norm_squared();
+                (now.sqrt(), now.max((e - r - end).norm_squared()).sqrt())
+            }));
         let mut tau: f64 = 1.0;
         for (k, pair) in Self::pairs(system, &self.near).enumerate() {
-            if let Some(&searched) = self.searched.get(k) {
-                let now = pair.largest(|p| self.moved[p].0);
-                let along = pair.largest(|p| self.moved[p].1);
-                let lowest = searched - along.0 - along.1 - pair.thickness;
-                let highest = searched + now.0 + now.1 - pair.thickness;
-                if lowest > keep * highest {
-                    continue;
-                }
+            let searched = self.searched[k];
+            let now = pair.largest(|p| self.moved[p].0);
+            let along = pair.largest(|p| self.moved[p].1);
+            let lowest = searched - along.0 - along.1 - pair.thickness;
+            let highest = searched + now.0 + now.1 - pair.thickness;
+            if lowest > keep * highest {
+                continue;
             }
             tau = tau.min(pair.ccd(x, dx, keep));
         }

@@ -34,39 +34,60 @@ use crate::linear::matrix::BlockMatrix;
 /// that margin from where they were found (a Verlet list).
 pub(super) const MARGIN: f64 = 4.0;
 
+/// The widest margin of a search, in units of the surfaces' mean edge
+/// length at rest. A fine mesh's contact distance is a quarter of that
+/// edge (by default, at most), so its margin stays at `d̂` and the reach
+/// `d̂ + s` within half an edge: the closest pairs of a flat triangulated
+/// grid that share no particle — a vertex and the diagonal across from it,
+/// 0.71 of a spacing or 0.62 of the mean edge apart — stay out of the
+/// list, which on a million-particle cloth would otherwise hold tens of
+/// pairs a particle.
+const WIDEST: f64 = 0.25;
+
 /// The pairs of a system's surfaces, with the broad phase's buffers.
 ///
 /// A proximity search at `x_s` with reach `d̂ + ξ + s` (`ξ` the largest
-/// thickness, `s` the margin) lists every pair closer than that; a pair
-/// left out stays farther than `d̂ + ξ` apart as long as every particle
-/// keeps within `s/2` of `x_s` — a ball is convex, so along a straight
-/// motion between two such configurations too. The list then holds every
-/// pair with a barrier term and every pair that can collide, and serves
-/// the iterations of a step, and the steps after it, until a particle
-/// leaves its ball. A motion that would leave it gets a swept search.
+/// thickness, `s` the margin) finds every pair closer than that; the list
+/// keeps those whose distance, less their own thickness, is below `d̂ + s`.
+/// A pair left out stays farther than `d̂` plus its thickness apart as long
+/// as every particle keeps within `s/2` of `x_s` moved by one common
+/// translation `t` — distances do not change when every particle is moved
+/// by `t`, and a ball is convex, so along a straight motion between two
+/// such configurations too (with `t` moving straight along with them).
+/// The list then holds every pair with a barrier term and every pair that
+/// can collide, and serves the iterations of a step, and the steps after
+/// it, until a particle leaves its ball: a cloth falling or carried as a
+/// whole keeps its list. A motion that would leave it gets a new search.
+/// The translation taken is the centre of the box of the particles'
+/// displacements from `x_s` ([`drift`]).
 ///
 /// Each candidate's distance `D` at `x_s` is kept with the list. A point
 /// of a segment or triangle moves no farther than its farthest corner, so
 /// at positions `x` the pair is at least `D − δ₁ − δ₂` apart, `δ₁` and `δ₂`
-/// the farthest either primitive's corners have moved from `x_s`; a pair
-/// for which that exceeds `d̂` plus its thickness has no barrier term and
-/// no friction, and its exact distance is not computed.
+/// the farthest either primitive's corners have moved from `x_s` (the
+/// common translation taken off); a pair for which that exceeds `d̂` plus
+/// its thickness has no barrier term and no friction, and its exact
+/// distance is not computed.
 #[derive(Debug, Default)]
 pub(crate) struct Pairs {
     pub(super) broad: BroadPhase,
     /// The candidates of the last search: the pairs within reach of its
-    /// positions (with the margin), or anywhere along a checked motion.
+    /// positions (with the margin, by their distance there), or whose
+    /// boxes meet anywhere along a checked motion.
     pub(super) near: Candidates,
-    /// The positions of the last proximity search, while its candidates
-    /// are a Verlet list (not after a swept search).
-    pub(super) reference: Option<Vec<Vec3>>,
+    /// The positions of the last search (the start of the motion of a
+    /// swept one); empty before the first.
+    pub(super) reference: Vec<Vec3>,
     /// Each candidate's distance at `reference`, in the order of
-    /// [`Pairs::pairs`] (empty after a swept search).
+    /// [`Pairs::pairs`].
     pub(super) searched: Vec<f64>,
-    /// The margin `s` of the last proximity search.
+    /// The margin `s` of the last proximity search; zero after a swept
+    /// search, whose list is no Verlet list.
     pub(super) margin: f64,
     /// The largest thickness of a pair.
     pub(super) thickest: f64,
+    /// The widest margin of a search ([`WIDEST`] mean edges).
+    pub(super) widest: f64,
     /// Scratch for the end of a motion.
     pub(super) end: Vec<Vec3>,
     /// Scratch for each particle's distance from [`Pairs::reference`] at
@@ -112,46 +133,61 @@ impl Pair {
 }
 
 impl Pairs {
-    /// Sets up the pairs of `system`.
+    /// Sets up the pairs of `system`: the largest thickness, and the widest
+    /// margin from the surfaces' edges at rest.
     pub(crate) fn begin(&mut self, system: &System) {
         self.thickest = (0..system.surface_count())
             .map(|g| system.surface_thickness(g))
             .fold(0.0, f64::max);
+        let rest = system.initial_positions();
+        let edges = system.surfaces().edges();
+        let total: f64 = edges.iter().map(|&[a, b]| (rest[a] - rest[b]).norm()).sum();
+        self.widest = WIDEST * total / edges.len().max(1) as f64;
     }
 
-    /// The pairs among `candidates`, with their particles and thickness.
+    /// The pairs among `candidates`, with their particles and thickness:
+    /// the point–triangle pairs, then the edge–edge pairs.
     pub(super) fn pairs<'a>(
         system: &'a System,
         candidates: &'a Candidates,
     ) -> impl Iterator<Item = Pair> + 'a {
-        let mesh = system.surfaces();
-        let thickness =
-            |g: usize, h: usize| 0.5 * (system.surface_thickness(g) + system.surface_thickness(h));
-        let friction =
-            |g: usize, h: usize| 0.5 * (system.surface_friction(g) + system.surface_friction(h));
-        let point_triangle = candidates.point_triangle.iter().map(move |&(v, t)| {
-            let (v, t) = (v as usize, t as usize);
-            let [a, b, c] = mesh.triangles()[t];
-            let (g, h) = (mesh.vertex_group(v), mesh.triangle_group(t));
-            Pair {
-                particles: [mesh.vertices()[v], a, b, c],
-                thickness: thickness(g, h),
-                friction: friction(g, h),
-                edges: false,
-            }
-        });
-        let edge_edge = candidates.edge_edge.iter().map(move |&(e, f)| {
-            let (e, f) = (e as usize, f as usize);
-            let ([a0, a1], [b0, b1]) = (mesh.edges()[e], mesh.edges()[f]);
-            let (g, h) = (mesh.edge_group(e), mesh.edge_group(f));
-            Pair {
-                particles: [a0, a1, b0, b1],
-                thickness: thickness(g, h),
-                friction: friction(g, h),
-                edges: true,
-            }
-        });
+        let point_triangle = candidates
+            .point_triangle
+            .iter()
+            .map(|&vt| Self::point_triangle(system, vt));
+        let edge_edge = candidates
+            .edge_edge
+            .iter()
+            .map(|&ef| Self::edge_edge(system, ef));
         point_triangle.chain(edge_edge)
+    }
+
+    /// The pair of vertex `v` and triangle `t` of the collision mesh.
+    fn point_triangle(system: &System, (v, t): (u32, u32)) -> Pair {
+        let mesh = system.surfaces();
+        let (v, t) = (v as usize, t as usize);
+        let [a, b, c] = mesh.triangles()[t];
+        let (g, h) = (mesh.vertex_group(v), mesh.triangle_group(t));
+        Pair {
+            particles: [mesh.vertices()[v], a, b, c],
+            thickness: 0.5 * (system.surface_thickness(g) + system.surface_thickness(h)),
+            friction: 0.5 * (system.surface_friction(g) + system.surface_friction(h)),
+            edges: false,
+        }
+    }
+
+    /// The pair of edges `e` and `f` of the collision mesh.
+    fn edge_edge(system: &System, (e, f): (u32, u32)) -> Pair {
+        let mesh = system.surfaces();
+        let (e, f) = (e as usize, f as usize);
+        let ([a0, a1], [b0, b1]) = (mesh.edges()[e], mesh.edges()[f]);
+        let (g, h) = (mesh.edge_group(e), mesh.edge_group(f));
+        Pair {
+            particles: [a0, a1, b0, b1],
+            thickness: 0.5 * (system.surface_thickness(g) + system.surface_thickness(h)),
+            friction: 0.5 * (system.surface_friction(g) + system.surface_friction(h)),
+            edges: true,
+        }
     }
 
     /// Makes the candidates cover `x`: every pair within the contact
@@ -159,21 +195,27 @@ impl Pairs {
     /// list while `x` lies within its margin, otherwise searches anew.
     pub(crate) fn search(&mut self, system: &System, x: &[Vec3], activation: f64) {
         if !self.covers(x) {
-            self.refresh(system, x, activation, MARGIN * activation);
+            self.refresh(system, x, activation, self.default_margin(activation));
         }
     }
 
+    /// The margin of a search that needs to cover no motion: [`MARGIN`]
+    /// `d̂`, at most the widest.
+    pub(super) fn default_margin(&self, activation: f64) -> f64 {
+        (MARGIN * activation).min(self.widest)
+    }
+
     /// Whether every particle at `y` lies within half the margin of the
-    /// last proximity search's positions.
+    /// last proximity search's positions, moved by their common
+    /// translation ([`drift`]).
     pub(super) fn covers(&self, y: &[Vec3]) -> bool {
-        let reach = (0.5 * self.margin).powi(2);
-        self.reference.as_ref().is_some_and(|r| {
-            r.len() == y.len() && r.iter().zip(y).all(|(r, y)| (y - r).norm_squared() < reach)
-        })
+        let r = &self.reference;
+        r.len() == y.len() && drift(r, y).1 < 0.5 * self.margin
     }
 
     /// A proximity search at `x` with the margin `margin` (see the type's
-    /// docs).
+    /// docs), keeping the pairs within `d̂` plus their thickness plus the
+    /// margin.
     pub(super) fn refresh(&mut self, system: &System, x: &[Vec3], activation: f64, margin: f64) {
         self.margin = margin;
         self.broad.proximity(
@@ -182,25 +224,82 @@ impl Pairs {
             activation + self.thickest + self.margin,
             &mut self.near,
         );
-        let reference = self.reference.get_or_insert_with(Vec::new);
-        reference.clear();
-        reference.extend_from_slice(x);
-        let near = &self.near;
+        self.reference.clear();
+        self.reference.extend_from_slice(x);
+        let searched = &mut self.searched;
+        searched.clear();
+        let mut within = |pair: Pair| {
+            let distance = Self::squared(&pair, x).max(0.0).sqrt();
+            // A pair at a position that is not a number stays listed.
+            let close = distance.is_nan() || distance - pair.thickness < activation + margin;
+            if close {
+                searched.push(distance);
+            }
+            close
+        };
+        self.near
+            .point_triangle
+            .retain(|&vt| within(Self::point_triangle(system, vt)));
+        self.near
+            .edge_edge
+            .retain(|&ef| within(Self::edge_edge(system, ef)));
+    }
+
+    /// A swept search over the motion from `x` to [`Pairs::end`]: the
+    /// pairs whose boxes, swept over the motion and grown by `d̂` and the
+    /// thickness, meet. Their distances at `x` are kept and `x` becomes the
+    /// list's positions, so that the bound on a pair's distance serves the
+    /// points of the motion; with no margin, the list covers no other
+    /// positions.
+    pub(super) fn swept(&mut self, system: &System, x: &[Vec3], activation: f64) {
+        self.margin = 0.0;
+        self.broad.swept(
+            system.surfaces(),
+            x,
+            &self.end,
+            activation + self.thickest,
+            &mut self.near,
+        );
+        self.reference.clear();
+        self.reference.extend_from_slice(x);
         self.searched.clear();
-        self.searched
-            .extend(Self::pairs(system, near).map(|pair| Self::squared(&pair, x).max(0.0).sqrt()));
+        self.searched.extend(
+            Self::pairs(system, &self.near).map(|pair| Self::squared(&pair, x).max(0.0).sqrt()),
+        );
+    }
+
+    /// The candidates that may lie within `activation` beyond their
+    /// thickness at `x`: those the bound of [`Pairs::far`] does not rule
+    /// out.
+    pub(super) fn reachable<'a>(
+        &'a self,
+        system: &'a System,
+        x: &'a [Vec3],
+        activation: f64,
+    ) -> impl Iterator<Item = Pair> + 'a {
+        let shift = drift(&self.reference, x).0;
+        Self::pairs(system, &self.near)
+            .enumerate()
+            .filter(move |(k, pair)| !self.far(*k, pair, x, shift, activation))
+            .map(|(_, pair)| pair)
     }
 
     /// Whether the candidate numbered `index`, `pair`, is certainly
     /// farther than `activation` beyond its thickness at `x`: its distance
     /// at the search's positions less how far the corners of each of its
-    /// two primitives have moved since (the type's docs). False after a
-    /// swept search.
-    pub(super) fn far(&self, index: usize, pair: &Pair, x: &[Vec3], activation: f64) -> bool {
-        let (Some(reference), Some(&searched)) = (&self.reference, self.searched.get(index)) else {
-            return false;
-        };
-        let (first, second) = pair.largest(|p| (x[p] - reference[p]).norm_squared());
+    /// two primitives have moved since, once every particle is moved back
+    /// by the translation `shift` (the type's docs).
+    pub(super) fn far(
+        &self,
+        index: usize,
+        pair: &Pair,
+        x: &[Vec3],
+        shift: Vec3,
+        activation: f64,
+    ) -> bool {
+        let reference = &self.reference;
+        let (first, second) = pair.largest(|p| (x[p] - reference[p] - shift).norm_squared());
+        let searched = self.searched[index];
         searched - first.sqrt() - second.sqrt() - pair.thickness >= activation
     }
 
@@ -269,10 +368,8 @@ impl Pairs {
     /// (`κ` not applied);
     /// infinite if a gap is not positive.
     pub(crate) fn energy(&self, system: &System, x: &[Vec3], activation: f64) -> f64 {
-        Self::pairs(system, &self.near)
-            .enumerate()
-            .filter(|(k, pair)| !self.far(*k, pair, x, activation))
-            .map(|(_, pair)| Self::value(system, &pair, x, activation))
+        self.reachable(system, x, activation)
+            .map(|pair| Self::value(system, &pair, x, activation))
             .sum()
     }
 
@@ -290,10 +387,7 @@ impl Pairs {
     ) -> usize {
         let (kb, kbb) = (kappa * beta_h, kappa * beta_h * beta_h);
         let mut count = 0;
-        for (k, pair) in Self::pairs(system, &self.near).enumerate() {
-            if self.far(k, &pair, x, activation) {
-                continue;
-            }
+        for pair in self.reachable(system, x, activation) {
             let Some(term) = Self::term(system, &pair, x, activation) else {
                 continue;
             };
@@ -324,8 +418,8 @@ impl Pairs {
         (kappa, activation): (f64, f64),
         out: &mut Vec<Lagged>,
     ) {
-        for (k, pair) in Self::pairs(system, &self.near).enumerate() {
-            if pair.friction <= 0.0 || self.far(k, &pair, x, activation) {
+        for pair in self.reachable(system, x, activation) {
+            if pair.friction <= 0.0 {
                 continue;
             }
             let [p0, p1, p2, p3] = pair.positions(x);
@@ -358,33 +452,62 @@ impl Pairs {
     }
 }
 
+/// The common translation `t` of the particles from `reference` to `y`
+/// that [`Pairs`] takes off their moves — the centre of the box of their
+/// displacements — and the farthest any particle then is from its
+/// reference position, `max |yᵢ − rᵢ − t|` (not a number if a position is
+/// not).
+pub(super) fn drift(reference: &[Vec3], y: &[Vec3]) -> (Vec3, f64) {
+    let (mut lo, mut hi) = (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY));
+    for (r, y) in reference.iter().zip(y) {
+        let d = y - r;
+        lo = lo.inf(&d);
+        hi = hi.sup(&d);
+    }
+    if reference.is_empty() {
+        return (Vec3::zeros(), 0.0);
+    }
+    let shift = 0.5 * (lo + hi);
+    let farthest = reference
+        .iter()
+        .zip(y)
+        .map(|(r, y)| (y - r - shift).norm_squared())
+        .fold(0.0, |m: f64, d| if d > m || d.is_nan() { d } else { m });
+    (shift, farthest.sqrt())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use hooke_core::SystemBuilder;
 
-    /// Two 6 × 6 sheets, 10 cm wide, 2 mm apart, with a contact distance of
-    /// 1 mm.
+    /// Adds to `b` an `n × n` sheet of particles of 1 g, `spacing` apart
+    /// along x and z from `corner`, as a surface of two triangles a cell.
+    fn sheet(b: &mut SystemBuilder, n: usize, spacing: f64, corner: Vec3) {
+        let indices: Vec<usize> = (0..n * n)
+            .map(|k| {
+                let (i, j) = ((k / n) as f64, (k % n) as f64);
+                b.particle(1e-3, corner + spacing * Vec3::new(i, 0.0, j))
+            })
+            .collect();
+        let at = |i: usize, j: usize| indices[i * n + j];
+        let mut triangles = Vec::new();
+        for i in 0..n - 1 {
+            for j in 0..n - 1 {
+                triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        b.surface(&triangles);
+    }
+
+    /// Two 6 × 6 sheets, 20 cm wide, 2 mm apart, with a contact distance of
+    /// 1 mm (the widest margin of a search 11 mm, a quarter of their mean
+    /// edge).
     fn sheets() -> System {
         let mut b = SystemBuilder::new();
-        let n = 6;
         for height in [0.0, 2e-3] {
-            let mut indices = Vec::new();
-            for i in 0..n {
-                for j in 0..n {
-                    let (u, v) = (0.02 * i as f64, 0.02 * j as f64);
-                    indices.push(b.particle(1e-3, [u + 0.3 * height, height, v]));
-                }
-            }
-            let at = |i: usize, j: usize| indices[i * n + j];
-            let mut triangles = Vec::new();
-            for i in 0..n - 1 {
-                for j in 0..n - 1 {
-                    triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-                    triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-                }
-            }
-            b.surface(&triangles);
+            sheet(&mut b, 6, 0.04, Vec3::new(0.3 * height, height, 0.0));
         }
         b.contact_distance(1e-3);
         b.build().unwrap()
@@ -424,56 +547,96 @@ mod tests {
     #[test]
     fn the_verlet_list_holds_every_close_pair_until_a_particle_leaves_its_ball() {
         let (system, d_hat, x0, mut pairs) = searched_sheets();
-        // Every particle moved by just under half the margin, in a
-        // pseudo-random direction: the list is kept, and still holds every
-        // pair a fresh search finds within d̂.
+        // Every particle moved by up to 0.9 of half the margin, in a
+        // pseudo-random direction, and then all of them carried 10 cm (25
+        // times the margin) as a whole: the list is kept, and still holds
+        // every pair a fresh search finds within d̂.
         let mut unit = uniform(7);
         let reach = 0.5 * MARGIN * d_hat;
+        let carried = Vec3::new(0.06, -0.08, 0.0);
         let x1: Vec<Vec3> = x0
             .iter()
             .map(|x| {
                 let d = Vec3::new(unit(), unit(), unit()).normalize();
-                x + 0.99 * reach * d
+                x + 0.9 * reach * d + carried
             })
             .collect();
         pairs.search(&system, &x1, d_hat);
-        assert_eq!(
-            pairs.reference.as_deref(),
-            Some(&x0[..]),
-            "the list was renewed"
-        );
+        assert_eq!(pairs.reference, x0, "the list was renewed");
         let mut fresh = Candidates::default();
         BroadPhase::default().proximity(system.surfaces(), &x1, d_hat, &mut fresh);
         let needed = within(&system, &fresh, &x1, d_hat);
         assert!(!needed.is_empty());
         let kept = within(&system, &pairs.near, &x1, d_hat);
         assert_eq!(kept, needed);
-        // One particle beyond its ball: the list is renewed at the new
-        // positions.
+        // One particle beyond its ball, whatever translation is taken off
+        // (the others are within 0.9 of it, this one 2.5 times it away):
+        // the list is renewed at the new positions.
         let mut x2 = x1.clone();
-        x2[0] += Vec3::new(0.0, 1.01 * reach, 0.0) + (x0[0] - x1[0]);
+        x2[0] += Vec3::new(0.0, 2.5 * reach, 0.0) + (x0[0] + carried - x1[0]);
         pairs.search(&system, &x2, d_hat);
-        assert_eq!(pairs.reference.as_deref(), Some(&x2[..]));
+        assert_eq!(pairs.reference, x2);
+    }
+
+    #[test]
+    fn a_fine_flat_sheet_lists_no_pair_of_its_own() {
+        // A 20 × 20 sheet, 1 cm spacing, its contact distance a quarter of
+        // its mean edge (the default's bound on a fine mesh): the margin
+        // stays at d̂, and the sheet, flat, lists none of its pairs, where
+        // a margin of 4 d̂ (a whole edge) would list thousands.
+        let mut b = SystemBuilder::new();
+        let n = 20;
+        sheet(&mut b, n, 0.01, Vec3::zeros());
+        // The mean of its 2n(n − 1) edges of 1 cm and (n − 1)² diagonals.
+        let (sides, diagonals) = ((2 * n * (n - 1)) as f64, ((n - 1) * (n - 1)) as f64);
+        let edge = 0.01 * (sides + 2.0_f64.sqrt() * diagonals) / (sides + diagonals);
+        b.contact_distance(0.25 * edge);
+        let system = b.build().unwrap();
+        let d_hat = system.contact_distance();
+        let x0 = system.initial_positions().to_vec();
+        let mut pairs = Pairs::default();
+        pairs.begin(&system);
+        pairs.search(&system, &x0, d_hat);
+        assert!(
+            (pairs.margin - d_hat).abs() < 1e-9 * d_hat,
+            "margin {} m, d̂ {d_hat} m",
+            pairs.margin
+        );
+        assert!(
+            pairs.near.point_triangle.is_empty() && pairs.near.edge_edge.is_empty(),
+            "{} + {} pairs listed",
+            pairs.near.point_triangle.len(),
+            pairs.near.edge_edge.len()
+        );
+        let mut wide = Candidates::default();
+        BroadPhase::default().proximity(system.surfaces(), &x0, (1.0 + MARGIN) * d_hat, &mut wide);
+        assert!(within(&system, &wide, &x0, (1.0 + MARGIN) * d_hat).len() > 1000);
     }
 
     #[test]
     fn a_candidate_the_bound_calls_far_is_beyond_the_contact_distance() {
         let (system, d_hat, x0, mut pairs) = searched_sheets();
         let mut unit = uniform(11);
-        // Moves of up to a tenth of the margin's half and up to all of it,
-        // each particle in its own direction and by its own fraction.
-        for size in [0.1, 0.99] {
+        // Moves of up to a tenth of the margin's half and up to 0.9 of it,
+        // each particle in its own direction and by its own fraction, and
+        // all of them carried 5 cm as a whole.
+        let carried = Vec3::new(0.0, 0.03, -0.04);
+        for size in [0.1, 0.9] {
             let moved = size * 0.5 * MARGIN * d_hat;
             let x: Vec<Vec3> = x0
                 .iter()
-                .map(|x| x + moved * (unit() + 0.5) * Vec3::new(unit(), unit(), unit()).normalize())
+                .map(|x| {
+                    let d = Vec3::new(unit(), unit(), unit()).normalize();
+                    x + moved * (unit() + 0.5) * d + carried
+                })
                 .collect();
             pairs.search(&system, &x, d_hat);
-            assert_eq!(pairs.reference.as_deref(), Some(&x0[..]));
+            assert_eq!(pairs.reference, x0);
+            let shift = drift(&x0, &x).0;
             let (mut far, mut near) = (0, 0);
             for (k, pair) in Pairs::pairs(&system, &pairs.near).enumerate() {
                 let gap = Pairs::gap(&pair, Pairs::squared(&pair, &x));
-                if pairs.far(k, &pair, &x, d_hat) {
+                if pairs.far(k, &pair, &x, shift, d_hat) {
                     far += 1;
                     assert!(gap >= d_hat, "pair {:?}: gap {gap}", pair.particles);
                 } else if gap < d_hat {
@@ -508,25 +671,37 @@ mod tests {
         let mut everything = Candidates::default();
         BroadPhase::default().proximity(system.surfaces(), &x0, 1.0, &mut everything);
         let mut unit = uniform(5);
-        // Motions within the Verlet list's margin, beyond it (a new list
-        // whose margin covers the motion) and far beyond it (a swept
-        // search), each particle in its own direction.
-        for (size, kept) in [(1.9, Some(true)), (3.0, Some(false)), (12.0, None)] {
+        // Motions within the Verlet list's margin (alone, and with the
+        // sheets carried 40 d̂ as a whole), beyond it (a new list whose
+        // margin covers the motion) and far beyond it (a swept search),
+        // each particle in its own direction.
+        let cases = [
+            (1.8, 0.0, Some(true)),
+            (1.8, 40.0, Some(true)),
+            (3.0, 0.0, Some(false)),
+            (12.0, 0.0, None),
+        ];
+        for (size, carried, kept) in cases {
+            let carried = carried * d_hat * Vec3::new(0.6, -0.8, 0.0);
             let dx: Vec<Vec3> = x0
                 .iter()
                 .map(|_| {
-                    size * d_hat * (unit() + 0.5) * Vec3::new(unit(), unit(), unit()).normalize()
+                    let d = Vec3::new(unit(), unit(), unit()).normalize();
+                    size * d_hat * (unit() + 0.5) * d + carried
                 })
                 .collect();
             let tau = pairs.limit(&system, &x0, &dx, (keep, d_hat));
             match kept {
-                Some(true) => assert_eq!(pairs.reference.as_deref(), Some(&x0[..])),
+                Some(true) => assert_eq!(pairs.reference, x0),
                 Some(false) => {
                     assert!(pairs.margin > 2.0 * size * d_hat, "margin {}", pairs.margin);
                     let end: Vec<Vec3> = x0.iter().zip(&dx).map(|(x, d)| x + d).collect();
                     assert!(pairs.covers(&x0) && pairs.covers(&end));
                 }
-                None => assert!(pairs.reference.is_none(), "motions of {size} d̂"),
+                None => assert!(
+                    pairs.margin == 0.0 && !pairs.covers(&x0),
+                    "motions of {size} d̂"
+                ),
             }
             // The bound skipped no pair whose CCD stops the motion.
             let unpruned = Pairs::pairs(&system, &pairs.near)
