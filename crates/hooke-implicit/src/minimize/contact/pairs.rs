@@ -579,6 +579,25 @@ mod tests {
     }
 
     #[test]
+    fn the_drift_takes_off_a_common_translation_and_keeps_a_position_that_is_not_a_number() {
+        let mut unit = uniform(3);
+        let reference: Vec<Vec3> = (0..50).map(|_| Vec3::new(unit(), unit(), unit())).collect();
+        let carried = Vec3::new(0.7, -1.3, 2.1);
+        let moved: Vec<Vec3> = reference.iter().map(|r| r + carried).collect();
+        let (shift, farthest) = drift(&reference, &moved);
+        assert!((shift - carried).norm() < 1e-15 && farthest < 1e-15);
+        // Two particles moved apart by ±d along x: the centre of the box is
+        // the common translation, and each is d from its place.
+        let mut apart = moved.clone();
+        apart[3].x += 0.25;
+        apart[9].x -= 0.25;
+        let (shift, farthest) = drift(&reference, &apart);
+        assert!((shift - carried).norm() < 1e-15 && (farthest - 0.25).abs() < 1e-15);
+        apart[20].y = f64::NAN;
+        assert!(drift(&reference, &apart).1.is_nan());
+    }
+
+    #[test]
     fn a_fine_flat_sheet_lists_no_pair_of_its_own() {
         // A 20 × 20 sheet, 1 cm spacing, its contact distance a quarter of
         // its mean edge (the default's bound on a fine mesh): the margin
