@@ -60,7 +60,8 @@ pub(crate) struct Newton<'a> {
     pub(crate) motion: &'a mut [Vec3],
     pub(crate) pcg: &'a mut crate::linear::cg::PcgWorkspace,
     pub(crate) report: &'a mut StepReport,
-    /// Whether iterative solves stop at the forcing term ([`forcing`]).
+    /// Whether iterative solves stop at the forcing term (see
+    /// [`Newton::minimize`]).
     pub(crate) inexact: bool,
     /// The stiffness blocks the last Newton step was solved with: once a
     /// step needed compressed springs clamped, its later iterations start

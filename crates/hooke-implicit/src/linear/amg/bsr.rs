@@ -16,7 +16,7 @@ use super::csr::Csr;
 /// fewer rows than a vector operation's [`PARALLEL_MIN_PARTICLES`] pay for
 /// the workers.
 ///
-/// [`PARALLEL_MIN_PARTICLES`]: crate::PARALLEL_MIN_PARTICLES
+/// [`PARALLEL_MIN_PARTICLES`]: crate::linear::vector::PARALLEL_MIN_PARTICLES
 pub(crate) const PARALLEL_MIN_ROWS: usize = 512;
 
 /// A dense `R × C` block, row-major.
@@ -228,7 +228,7 @@ pub(crate) fn add_product<const R: usize, const C: usize, const K: usize>(
 /// sparse product's rows, [`PARALLEL_MIN_PARTICLES`] for a few operations
 /// per row.
 ///
-/// [`PARALLEL_MIN_PARTICLES`]: crate::PARALLEL_MIN_PARTICLES
+/// [`PARALLEL_MIN_PARTICLES`]: crate::linear::vector::PARALLEL_MIN_PARTICLES
 pub(crate) fn for_each_block(
     out: &mut [f64],
     width: usize,

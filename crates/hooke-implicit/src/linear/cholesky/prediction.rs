@@ -15,9 +15,9 @@ use crate::linear::pattern::Pattern;
 /// edge per pair of particles a spring joins) counts the off-diagonal
 /// entries `f` of that graph's factor as it orders it, and the block
 /// factor has a 3x3 block for each (`9 f`) and the lower triangle of one per
-/// particle (`6 n`). [`SparseCholesky`] orders the scalar matrix, whose
-/// 3x3 blocks AMD finds again, so its factor has about this size. `None`
-/// if the graph does not fit 32-bit indices.
+/// particle (`6 n`). [`SparseCholesky`](super::SparseCholesky) orders the
+/// scalar matrix, whose 3x3 blocks AMD finds again, so its factor has about
+/// this size. `None` if the graph does not fit 32-bit indices.
 pub(crate) fn predicted_factor_entries(pattern: &Pattern) -> Option<usize> {
     let n = pattern.rows();
     // Both triangles of the graph in compressed columns, each column's rows

@@ -16,12 +16,12 @@ use crate::linear::cholesky::{SparseCholesky, predicted_factor_entries};
 /// components in `[−1, 1]` with each candidate ([`second_run`] timing
 /// it), keeps what the chosen one built (the factor or the hierarchy) and
 /// returns it — the fastest, but an iterative candidate only within
-/// [`auto.iterative_margin`] of the factorization's time —,
-/// whether it falls back to the factorization (an iterative choice
-/// where the factor is affordable) and, when the factorization and the
-/// fastest iterative candidate are within
-/// [`auto.probe_ratio`], the comparison of the two on whole
-/// steps (the runner-up), for which it keeps what both built. A
+/// [`auto.iterative_margin`](AutoSettings::iterative_margin) of the
+/// factorization's time —, whether it falls back to the factorization (an
+/// iterative choice where the factor is affordable) and, when the
+/// factorization and the fastest iterative candidate are within
+/// [`auto.probe_ratio`](AutoSettings::probe_ratio), the comparison of the
+/// two on whole steps (the runner-up), for which it keeps what both built. A
 /// right-hand side of every frequency tries each preconditioner as
 /// the later Newton systems will, where the step's own one may be smooth
 /// (a cloth at rest under gravity) and flatter a preconditioner that only

@@ -31,7 +31,8 @@ use crate::linear::matrix::BlockMatrix;
 /// How far beyond the contact distance `d̂` (plus thickness) a proximity
 /// search reaches, in units of `d̂`: its candidates stay valid, at any
 /// positions and along any motion, while no particle is more than half
-/// that margin from where they were found (a Verlet list).
+/// that margin from where they were found once the particles' common
+/// translation is taken off (a Verlet list; see [`Pairs`]).
 pub(super) const MARGIN: f64 = 4.0;
 
 /// The widest margin of a search, in units of the surfaces' mean edge
