@@ -73,19 +73,23 @@ impl Pairs {
     ) -> f64 {
         self.end.clear();
         self.end.extend(x.iter().zip(dx).map(|(x, d)| x + d));
-        if !(self.covers(x) && self.covers(&self.end)) {
-            let longest = drift(x, &self.end).1;
+        // The common translations of `x` and of the motion's end from the
+        // list's positions, and the farthest moves less them.
+        let (mut start, mut end) = (drift(&self.reference, x), drift(&self.reference, &self.end));
+        if !(self.within_margin(x, start.1) && self.within_margin(&self.end, end.1)) {
+            let motion = drift(x, &self.end);
             let margin = self
                 .default_margin(activation)
-                .max(2.0 * MOTION_SLACK * longest);
+                .max(2.0 * MOTION_SLACK * motion.1);
             if margin <= (MAX_MARGIN * activation).min(self.widest) {
                 self.refresh(system, x, activation, margin);
             } else {
                 self.swept(system, x, activation);
             }
+            // The list's positions are now `x`.
+            (start, end) = ((Vec3::zeros(), 0.0), motion);
         }
-        let reference = &self.reference;
-        let (start, end) = (drift(reference, x).0, drift(reference, &self.end).0);
+        let (reference, start, end) = (&self.reference, start.0, end.0);
         self.moved.clear();
         self.moved
             .extend(reference.iter().zip(x).zip(&self.end).map(|((r, x), e)| {

@@ -168,11 +168,12 @@ impl Pairs {
         let mesh = system.surfaces();
         let (v, t) = (v as usize, t as usize);
         let [a, b, c] = mesh.triangles()[t];
-        let (g, h) = (mesh.vertex_group(v), mesh.triangle_group(t));
+        let (thickness, friction) =
+            Self::between(system, mesh.vertex_group(v), mesh.triangle_group(t));
         Pair {
             particles: [mesh.vertices()[v], a, b, c],
-            thickness: 0.5 * (system.surface_thickness(g) + system.surface_thickness(h)),
-            friction: 0.5 * (system.surface_friction(g) + system.surface_friction(h)),
+            thickness,
+            friction,
             edges: false,
         }
     }
@@ -182,13 +183,22 @@ impl Pairs {
         let mesh = system.surfaces();
         let (e, f) = (e as usize, f as usize);
         let ([a0, a1], [b0, b1]) = (mesh.edges()[e], mesh.edges()[f]);
-        let (g, h) = (mesh.edge_group(e), mesh.edge_group(f));
+        let (thickness, friction) = Self::between(system, mesh.edge_group(e), mesh.edge_group(f));
         Pair {
             particles: [a0, a1, b0, b1],
-            thickness: 0.5 * (system.surface_thickness(g) + system.surface_thickness(h)),
-            friction: 0.5 * (system.surface_friction(g) + system.surface_friction(h)),
+            thickness,
+            friction,
             edges: true,
         }
+    }
+
+    /// The thickness and friction coefficient of a pair between surfaces
+    /// `g` and `h`: the means of theirs.
+    fn between(system: &System, g: usize, h: usize) -> (f64, f64) {
+        (
+            0.5 * (system.surface_thickness(g) + system.surface_thickness(h)),
+            0.5 * (system.surface_friction(g) + system.surface_friction(h)),
+        )
     }
 
     /// Makes the candidates cover `x`: every pair within the contact
@@ -210,8 +220,13 @@ impl Pairs {
     /// last proximity search's positions, moved by their common
     /// translation ([`drift`]).
     pub(super) fn covers(&self, y: &[Vec3]) -> bool {
-        let r = &self.reference;
-        r.len() == y.len() && drift(r, y).1 < 0.5 * self.margin
+        self.within_margin(y, drift(&self.reference, y).1)
+    }
+
+    /// Whether positions `y` whose [`drift`] from the list's positions
+    /// reaches `farthest` lie within half its margin.
+    pub(super) fn within_margin(&self, y: &[Vec3], farthest: f64) -> bool {
+        self.reference.len() == y.len() && farthest < 0.5 * self.margin
     }
 
     /// A proximity search at `x` with the margin `margin` (see the type's
@@ -230,7 +245,7 @@ impl Pairs {
         let searched = &mut self.searched;
         searched.clear();
         let mut within = |pair: Pair| {
-            let distance = Self::squared(&pair, x).max(0.0).sqrt();
+            let distance = Self::distance(&pair, x);
             // A pair at a position that is not a number stays listed.
             let close = distance.is_nan() || distance - pair.thickness < activation + margin;
             if close {
@@ -264,9 +279,8 @@ impl Pairs {
         self.reference.clear();
         self.reference.extend_from_slice(x);
         self.searched.clear();
-        self.searched.extend(
-            Self::pairs(system, &self.near).map(|pair| Self::squared(&pair, x).max(0.0).sqrt()),
-        );
+        self.searched
+            .extend(Self::pairs(system, &self.near).map(|pair| Self::distance(&pair, x)));
     }
 
     /// The candidates that may lie within `activation` beyond their
@@ -312,6 +326,11 @@ impl Pairs {
         } else {
             point_triangle_closest(p0, p1, p2, p3).squared
         }
+    }
+
+    /// The distance of a pair at `x`, without derivatives.
+    fn distance(pair: &Pair, x: &[Vec3]) -> f64 {
+        Self::squared(pair, x).max(0.0).sqrt()
     }
 
     /// The gap of a pair whose squared distance is `squared`.
