@@ -2,7 +2,7 @@
 //! topology, and one solve as a Newton iteration pays it.
 
 use criterion::{BenchmarkId, Criterion};
-use hooke::implicit::internals::{Amg, AmgSettings, SparseCholesky, cg};
+use hooke::implicit::internals::{Amg, AmgSettings, FillOrdering, SparseCholesky, cg};
 use hooke::prelude::*;
 
 use crate::fixtures::{DAMPING, cloth, settings, sides, step_system, wavy};
@@ -35,16 +35,21 @@ pub fn linear(c: &mut Criterion) {
         let mut x = vec![Vec3::zeros(); s.b.len()];
         let mut workspace = cg::PcgWorkspace::default();
         if n <= 400 {
-            let mut cholesky = SparseCholesky::new(&s.a).unwrap();
-            let factor = cholesky.info();
-            eprintln!(
-                "cholesky {n}²: {} factor entries, {} bytes per particle",
-                factor.factor_nonzeros,
-                factor.bytes / s.b.len()
-            );
-            solve.bench_with_input(BenchmarkId::new("cholesky", n), &n, |b, _| {
-                b.iter(|| cholesky.solve(&s.a, &s.filters, &s.b, &mut x).unwrap());
-            });
+            for (name, ordering) in [
+                ("cholesky", FillOrdering::Particles),
+                ("cholesky-scalar-amd", FillOrdering::Scalar),
+            ] {
+                let mut cholesky = SparseCholesky::with_ordering(&s.a, ordering).unwrap();
+                let factor = cholesky.info();
+                eprintln!(
+                    "{name} {n}²: {} factor entries, {} bytes per particle",
+                    factor.factor_nonzeros,
+                    factor.bytes / s.b.len()
+                );
+                solve.bench_with_input(BenchmarkId::new(name, n), &n, |b, _| {
+                    b.iter(|| cholesky.solve(&s.a, &s.filters, &s.b, &mut x).unwrap());
+                });
+            }
         }
         let mut amg =
             Amg::build(&s.a, &s.filters, state.positions(), AmgSettings::default()).unwrap();

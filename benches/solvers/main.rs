@@ -7,8 +7,10 @@
 //! - `setup`: what a solver builds once per topology (Cholesky's symbolic
 //!   analysis, the multigrid hierarchy);
 //! - `solve`: one solve as a Newton iteration pays it (Cholesky: refill,
-//!   numeric factorization and solve; multigrid: the refresh of every
-//!   level's values and PCG; block-Jacobi: PCG);
+//!   numeric factorization and solve, in the particles' fill-reducing order,
+//!   `cholesky`, and in faer's order of the scalar unknowns,
+//!   `cholesky-scalar-amd`, the solver before; multigrid: the refresh of
+//!   every level's values and PCG; block-Jacobi: PCG);
 //! - `linearised-step`: Baraff & Witkin's step as the issue measures it —
 //!   one linear solve from the wavy state to 10⁻⁶, assembly included — of
 //!   the integrator (`Implicit::linearized`), the factor or hierarchy kept

@@ -140,7 +140,7 @@ pub mod internals {
     pub use crate::linear::block::SymBlock;
     pub use crate::linear::cg::{self, BlockJacobi};
     pub use crate::linear::cholesky::{
-        CholeskyError, CholeskyInfo, FactorPreconditioner, SparseCholesky,
+        CholeskyError, CholeskyInfo, FactorPreconditioner, FillOrdering, SparseCholesky,
     };
     pub use crate::linear::filter::Filter;
     pub use crate::linear::matrix::BlockMatrix;

@@ -1,6 +1,6 @@
 //! Per-particle constraint filters (Baraff & Witkin 1998, §5.3).
 
-use hooke_core::{Mat3, Vec3};
+use hooke_core::{Mat3, System, Vec3};
 
 /// The filter `Sᵢ` of one particle: the projection onto the directions in
 /// which its velocity change is free. A constrained direction's velocity
@@ -44,6 +44,20 @@ impl Filter {
             Self::Fixed => Mat3::zeros(),
         }
     }
+}
+
+/// Every particle's filter from its pin alone: [`Filter::Fixed`] for a
+/// pinned particle, [`Filter::Free`] otherwise.
+pub(crate) fn pin_filters(system: &System) -> Vec<Filter> {
+    (0..system.particle_count())
+        .map(|i| {
+            if system.is_pinned(i) {
+                Filter::Fixed
+            } else {
+                Filter::Free
+            }
+        })
+        .collect()
 }
 
 /// `Sᵢ vᵢ` for every particle.

@@ -13,7 +13,10 @@ use hooke_core::{Mat3, StepError, Vec3};
 use std::cell::RefCell;
 
 mod prediction;
+use prediction::particle_order;
 pub(crate) use prediction::predicted_factor_entries;
+
+use crate::linear::amg::fine::Neighbours;
 
 use crate::linear::cg::Preconditioner;
 use crate::linear::filter::Filter;
@@ -42,6 +45,21 @@ impl CholeskyError {
     }
 }
 
+/// How [`SparseCholesky`] orders the unknowns to reduce the factor's fill.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FillOrdering {
+    /// Approximate minimum degree on the particle graph, each particle's
+    /// three unknowns kept together, and the matrix laid out in that order
+    /// once: a factorization reads it as it is. The default.
+    #[default]
+    Particles,
+    /// faer's approximate minimum degree on the scalar matrix, laid out in
+    /// the particles' own order, which faer copies into its order at every
+    /// factorization (the solver before [`FillOrdering::Particles`], kept
+    /// to measure against it).
+    Scalar,
+}
+
 /// A direct solver for the filtered system
 ///
 /// ```text
@@ -53,11 +71,21 @@ impl CholeskyError {
 /// `A x = b` there. For a pinned particle `S = 0` and its rows become the
 /// identity, so the matrix stays positive definite whenever `A` is.
 ///
-/// The lower triangle of the scalar `3n × 3n` matrix is laid out in
-/// compressed columns once, the fill-reducing ordering (AMD) and symbolic
-/// factorization are computed once, and every solve only copies the filtered
-/// blocks into place, factorizes numerically (`L Lᵀ`) into preallocated
-/// storage and solves, without allocating.
+/// The fill-reducing ordering ([`FillOrdering`]) and the symbolic
+/// factorization are computed once, the lower triangle of the scalar
+/// `3n × 3n` matrix is laid out in compressed columns once, and every solve
+/// only copies the filtered blocks into place, factorizes numerically
+/// (`L Lᵀ`) into preallocated storage and solves, without allocating.
+///
+/// By default the particles are ordered by approximate minimum degree on
+/// their graph (one node per particle, an edge per spring), and the matrix
+/// is laid out in that order: particle `q` in place `k` owns the unknowns
+/// `3k..3k + 2`. AMD on the `3n` scalar unknowns finds each particle's three
+/// as one supervariable and orders them alike (on the cloths of
+/// `benches/solvers` the two factors have the same size), but faer then
+/// copies the matrix into its order at every factorization, a fifth of the
+/// factorization's time on the default scene; laid out in its order once,
+/// the matrix is factorized as it is.
 pub struct SparseCholesky {
     col_ptr: Vec<u32>,
     row_idx: Vec<u32>,
@@ -65,6 +93,12 @@ pub struct SparseCholesky {
     /// Per slot of the pattern, the position of the first entry of each of
     /// the three columns of its spring's block below the diagonal.
     slot_columns: Vec<[u32; 3]>,
+    /// Per slot, whether the block below the diagonal is the slot's block
+    /// `(q, p)` itself (its row particle `q` ordered after its column
+    /// particle `p`) rather than its transpose.
+    slot_upper: Vec<bool>,
+    /// Each particle's place in the order of the factorization.
+    order: Vec<u32>,
     symbolic: SymbolicCholesky<u32>,
     factor: Vec<f64>,
     factor_memory: MemBuffer,
@@ -119,6 +153,15 @@ impl SparseCholesky {
     /// [`StepError::SystemTooLarge`] if the scalar matrix does not fit 32-bit
     /// indices.
     pub fn new(a: &BlockMatrix) -> Result<Self, StepError> {
+        Self::with_ordering(a, FillOrdering::default())
+    }
+
+    /// The layout and symbolic factorization for matrices with the pattern of
+    /// `a`, with the fill-reducing ordering `ordering`.
+    ///
+    /// # Errors
+    /// As [`SparseCholesky::new`].
+    pub fn with_ordering(a: &BlockMatrix, ordering: FillOrdering) -> Result<Self, StepError> {
         let (n, springs) = (a.rows(), a.pattern().slots());
         let dofs = 3 * n;
         let too_large = || StepError::SystemTooLarge {
@@ -128,31 +171,77 @@ impl SparseCholesky {
         let nonzeros = 6 * n + 9 * springs;
         let index = |k: usize| u32::try_from(k).map_err(|_| too_large());
         index(nonzeros)?;
-        // Column 3q + c holds rows 3q + c..3q + 2 of the diagonal block, then
-        // rows 3p..3p + 2 for every neighbour p > q in increasing order.
+        // The particles in the fill-reducing order of their graph; each
+        // particle's three unknowns stay together, so the factor is made of
+        // 3x3 blocks and a solve permutes whole particles.
+        let blocks = a.pattern();
+        let order = match ordering {
+            FillOrdering::Particles => particle_order(blocks).ok_or_else(too_large)?.0,
+            FillOrdering::Scalar => (0..n as u32).collect(),
+        };
+        let mut particle_at = vec![0; n];
+        for (q, &k) in order.iter().enumerate() {
+            particle_at[k as usize] = q;
+        }
+        // Column 3k + c, for the k-th particle q of the order, holds rows
+        // 3k + c..3k + 2 of q's diagonal block, then rows 3l..3l + 2 for
+        // every neighbour of q whose place l > k, in increasing order.
+        let neighbours = Neighbours::new(blocks);
         let mut col_ptr = Vec::with_capacity(dofs + 1);
         let mut row_idx = Vec::with_capacity(nonzeros);
         let mut slot_columns = vec![[0; 3]; springs];
+        let mut slot_upper = vec![false; springs];
+        let mut later = Vec::new();
         col_ptr.push(0);
-        let blocks = a.pattern();
-        #[allow(clippy::needless_range_loop)] // `c` is a column within the block
-        for q in 0..n {
+        for (k, &q) in particle_at.iter().enumerate() {
+            later.clear();
+            later.extend(
+                neighbours
+                    .of(q)
+                    .iter()
+                    .map(|&(p, t)| (order[p as usize], t))
+                    .filter(|&(l, _)| l as usize > k),
+            );
+            later.sort_unstable();
+            for &(_, t) in &later {
+                slot_upper[t as usize] = blocks.row_of(t as usize) != q;
+            }
+            #[allow(clippy::needless_range_loop)] // `c` is a column within the block
             for c in 0..3 {
-                row_idx.extend((c..3).map(|r| (3 * q + r) as u32));
-                for t in blocks.upper(q) {
-                    slot_columns[t][c] = row_idx.len() as u32;
-                    row_idx.extend((0..3).map(|r| (3 * blocks.column(t) + r) as u32));
+                row_idx.extend((c..3).map(|r| (3 * k + r) as u32));
+                for &(l, t) in &later {
+                    slot_columns[t as usize][c] = row_idx.len() as u32;
+                    row_idx.extend((0..3).map(|r| 3 * l + r));
                 }
                 col_ptr.push(row_idx.len() as u32);
             }
         }
-        let pattern = SymbolicSparseColMatRef::new_checked(dofs, dofs, &col_ptr, None, &row_idx);
-        let symbolic = factorize_symbolic_cholesky(
-            pattern,
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            CholeskySymbolicParams::default(),
-        )
+        drop(neighbours);
+        let symbolic = match ordering {
+            FillOrdering::Particles => {
+                // faer analyses a matrix it does not order from its upper
+                // triangle.
+                let (upper_ptr, upper_idx) = transpose(dofs, &col_ptr, &row_idx);
+                let upper =
+                    SymbolicSparseColMatRef::new_checked(dofs, dofs, &upper_ptr, None, &upper_idx);
+                factorize_symbolic_cholesky(
+                    upper,
+                    Side::Upper,
+                    SymmetricOrdering::Identity,
+                    CholeskySymbolicParams::default(),
+                )
+            }
+            FillOrdering::Scalar => {
+                let lower =
+                    SymbolicSparseColMatRef::new_checked(dofs, dofs, &col_ptr, None, &row_idx);
+                factorize_symbolic_cholesky(
+                    lower,
+                    Side::Lower,
+                    SymmetricOrdering::Amd,
+                    CholeskySymbolicParams::default(),
+                )
+            }
+        }
         .map_err(|_| too_large())?;
         let par = parallelism(n);
         let factor_memory =
@@ -164,6 +253,8 @@ impl SparseCholesky {
             col_ptr,
             row_idx,
             slot_columns,
+            slot_upper,
+            order,
             symbolic,
             factor_memory,
             solve_memory,
@@ -214,12 +305,15 @@ impl SparseCholesky {
             )
             .map_err(
                 |faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }| {
-                    let dof = match self.symbolic.perm() {
+                    // The pivot's unknown in the layout, then its particle.
+                    let unknown = match self.symbolic.perm() {
                         Some(p) => p.arrays().0.get(index).map(|&d| d as usize),
                         None => Some(index),
                     };
+                    let place = unknown.filter(|&d| d < dofs).map(|d| d / 3);
                     CholeskyError::NotPositiveDefinite {
-                        particle: dof.filter(|&d| d < dofs).map(|d| d / 3),
+                        particle: place
+                            .and_then(|k| self.order.iter().position(|&l| l as usize == k)),
                     }
                 },
             )?;
@@ -234,7 +328,8 @@ impl SparseCholesky {
     pub fn solve_factored(&mut self, filters: &[Filter], b: &[Vec3], x: &mut [Vec3]) {
         let dofs = self.rhs.len();
         for (i, (bi, f)) in b.iter().zip(filters).enumerate() {
-            self.rhs[3 * i..3 * i + 3].copy_from_slice(f.apply(*bi).as_slice());
+            let k = 3 * self.order[i] as usize;
+            self.rhs[k..k + 3].copy_from_slice(f.apply(*bi).as_slice());
         }
         LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
             Conj::No,
@@ -243,7 +338,8 @@ impl SparseCholesky {
             MemStack::new(&mut self.solve_memory),
         );
         for (i, (xi, f)) in x.iter_mut().zip(filters).enumerate() {
-            *xi = f.apply(Vec3::from_column_slice(&self.rhs[3 * i..3 * i + 3]));
+            let k = 3 * self.order[i] as usize;
+            *xi = f.apply(Vec3::from_column_slice(&self.rhs[k..k + 3]));
         }
     }
 
@@ -270,7 +366,12 @@ impl SparseCholesky {
             unknowns: self.rhs.len(),
             nonzeros: self.values.len(),
             factor_nonzeros: self.factor.len(),
-            bytes: 4 * (self.col_ptr.len() + self.row_idx.len() + 3 * self.slot_columns.len())
+            bytes: 4
+                * (self.col_ptr.len()
+                    + self.row_idx.len()
+                    + 3 * self.slot_columns.len()
+                    + self.order.len())
+                + self.slot_upper.len()
                 + 8 * (self.values.len() + self.factor.len() + self.rhs.len())
                 + 8 * self.compensation.len()
                 + symbolic
@@ -320,8 +421,9 @@ impl SparseCholesky {
             let s = filter.matrix();
             let block = sandwich(a.diagonal(q), filter, filter) + Mat3::identity() - s
                 + self.compensation[q] * s;
+            let k = 3 * self.order[q] as usize;
             for c in 0..3 {
-                let start = self.col_ptr[3 * q + c] as usize;
+                let start = self.col_ptr[k + c] as usize;
                 for r in c..3 {
                     self.values[start + r - c] = block[(r, c)];
                 }
@@ -331,8 +433,13 @@ impl SparseCholesky {
         for q in 0..pattern.rows() {
             for t in pattern.upper(q) {
                 let p = pattern.column(t);
-                // The slot's block at (q, p), transposed to the lower (p, q).
-                let block = sandwich(a.slot_block(t).transpose(), filters[p], filters[q]);
+                // The slot's block at (q, p), or its transpose at (p, q),
+                // whichever lies below the diagonal in the order.
+                let block = if self.slot_upper[t] {
+                    sandwich(a.slot_block(t), filters[q], filters[p])
+                } else {
+                    sandwich(a.slot_block(t).transpose(), filters[p], filters[q])
+                };
                 for (c, &start) in self.slot_columns[t].iter().enumerate() {
                     for r in 0..3 {
                         self.values[start as usize + r] = block[(r, c)];
@@ -357,6 +464,28 @@ impl Preconditioner for FactorPreconditioner<'_> {
             .borrow_mut()
             .solve_factored(self.filters, r, z);
     }
+}
+
+/// The pattern of the transpose of the `dofs × dofs` pattern in compressed
+/// columns `col_ptr`, `row_idx`: its compressed rows, each row's columns in
+/// increasing order.
+fn transpose(dofs: usize, col_ptr: &[u32], row_idx: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    let mut ptr = vec![0u32; dofs + 1];
+    for &r in row_idx {
+        ptr[r as usize + 1] += 1;
+    }
+    for r in 0..dofs {
+        ptr[r + 1] += ptr[r];
+    }
+    let mut next = ptr.clone();
+    let mut idx = vec![0u32; row_idx.len()];
+    for c in 0..dofs {
+        for &r in &row_idx[col_ptr[c] as usize..col_ptr[c + 1] as usize] {
+            idx[next[r as usize] as usize] = c as u32;
+            next[r as usize] += 1;
+        }
+    }
+    (ptr, idx)
 }
 
 /// Sequential for small systems, faer's rayon parallelism for large ones.

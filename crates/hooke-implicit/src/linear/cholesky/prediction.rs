@@ -9,16 +9,12 @@ use faer::sparse::linalg::amd;
 use crate::linear::amg::fine::Neighbours;
 use crate::linear::pattern::Pattern;
 
-/// The number of scalar entries of the Cholesky factor of a matrix with
-/// `pattern`'s blocks, predicted without factorizing: the approximate
-/// minimum degree ordering of the particle graph (one node per particle, an
-/// edge per pair of particles a spring joins) counts the off-diagonal
-/// entries `f` of that graph's factor as it orders it, and the block
-/// factor has a 3x3 block for each (`9 f`) and the lower triangle of one per
-/// particle (`6 n`). [`SparseCholesky`](super::SparseCholesky) orders the
-/// scalar matrix, whose 3x3 blocks AMD finds again, so its factor has about
-/// this size. `None` if the graph does not fit 32-bit indices.
-pub(crate) fn predicted_factor_entries(pattern: &Pattern) -> Option<usize> {
+/// The approximate minimum degree ordering of the particle graph of
+/// `pattern` (one node per particle, an edge per pair of particles a
+/// spring joins): each particle's place in the order, and the number of
+/// off-diagonal entries of that graph's Cholesky factor, which AMD counts
+/// as it orders. `None` if the graph does not fit 32-bit indices.
+pub(crate) fn particle_order(pattern: &Pattern) -> Option<(Vec<u32>, usize)> {
     let n = pattern.rows();
     // Both triangles of the graph in compressed columns, each column's rows
     // in increasing order.
@@ -43,7 +39,19 @@ pub(crate) fn predicted_factor_entries(pattern: &Pattern) -> Option<usize> {
     )
     .ok()?;
     // AMD's division count is the factor's off-diagonal entry count.
-    Some(9 * count.n_div as usize + 6 * n)
+    Some((perm_inv, count.n_div as usize))
+}
+
+/// The number of scalar entries of the Cholesky factor of a matrix with
+/// `pattern`'s blocks, predicted without factorizing: the factor of the
+/// particle graph in its [`particle_order`] has `f` off-diagonal entries,
+/// and the block factor a 3x3 block for each (`9 f`) and the lower
+/// triangle of one per particle (`6 n`) —
+/// [`SparseCholesky`](super::SparseCholesky) factorizes in that order, so
+/// its factor has this size. `None` if the graph does not fit 32-bit
+/// indices.
+pub(crate) fn predicted_factor_entries(pattern: &Pattern) -> Option<usize> {
+    particle_order(pattern).map(|(_, off_diagonal)| 9 * off_diagonal + 6 * pattern.rows())
 }
 
 #[cfg(test)]
@@ -88,7 +96,8 @@ mod tests {
     }
 
     /// On a cloth the prediction from the particle graph is within a factor
-    /// of two of the factor faer allocates for the scalar matrix.
+    /// of two of the factor faer allocates, whose supernodes hold zeros
+    /// too.
     #[test]
     fn predicted_factor_of_a_cloth_is_about_faers() {
         let system = Sheet::new(24).system().unwrap();

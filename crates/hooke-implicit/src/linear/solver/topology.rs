@@ -8,7 +8,7 @@ use super::auto_settings::AutoSettings;
 use super::renewal::{AmgRenewal, AmgState};
 use crate::linear::cg::BlockJacobi;
 use crate::linear::cholesky::SparseCholesky;
-use crate::linear::filter::Filter;
+use crate::linear::filter::{Filter, pin_filters};
 use crate::linear::matrix::BlockMatrix;
 use crate::linear::pattern::Pattern;
 
@@ -145,15 +145,7 @@ pub(crate) fn topology<'a>(
             }
             _ => None,
         };
-        let filters = (0..system.particle_count())
-            .map(|i| {
-                if system.is_pinned(i) {
-                    Filter::Fixed
-                } else {
-                    Filter::Free
-                }
-            })
-            .collect();
+        let filters = pin_filters(system);
         *cached = Some(Topology {
             system: system.id(),
             matrix,
