@@ -35,8 +35,12 @@ pub enum Minimizer {
     /// solves, no matrix is assembled. The same line search, stopping rule,
     /// energy test and substeps as Newton's method; it converges linearly
     /// where Newton converges quadratically, so it wins at loose
-    /// tolerances and on large meshes. The `quasi_newton` module gives the
-    /// equations.
+    /// tolerances and on large meshes. It loses where contacts come and
+    /// go within a step and stiff springs fold: on the default scene (a
+    /// stiff cloth landing on a sphere and a floor, default tolerance) it
+    /// took 120 iterations a step against Newton's 4.9, 691 substeps for
+    /// its 210 steps, and 4.7 times Newton's time (2026-11-27). The
+    /// `quasi_newton` module gives the equations.
     QuasiNewton {
         /// The curvature pairs kept.
         history: usize,
