@@ -91,6 +91,9 @@ pub(crate) struct Contact {
     friction_model: FrictionModel,
     /// The feasible positions the step starts from.
     start: Vec<Vec3>,
+    /// The part of a motion the obstacles allow, for the pairs' check
+    /// ([`Contact::limit`]).
+    shortened: Vec<Vec3>,
     /// The smallest gap seen at the end of an accepted step so far.
     pub(crate) smallest_gap: f64,
 }
@@ -385,18 +388,38 @@ impl Contact {
     /// and [`Contact::add`] then hold for the points of this motion: its
     /// swept broad phase found every pair that comes within reach along
     /// it, so a line search needs one broad phase, not one a trial point.
+    ///
+    /// The obstacles come first, particle by particle: where they stop the
+    /// motion at `τ₀ < 1`, the surfaces' pairs are checked along `τ₀ dx`
+    /// only, the part of the motion a line search can still take. A
+    /// landing body, whose obstacles cut most of its Newton steps short,
+    /// then has its surfaces searched along motions a fraction as long:
+    /// the pair list covers more of them, and the swept searches it still
+    /// needs test smaller boxes. The result is as safe and no shorter than
+    /// checking the pairs along the whole motion: a pair's CCD bound is
+    /// conservative by an amount that shrinks with the motion.
     pub(crate) fn limit(&mut self, system: &System, x: &[Vec3], dx: &[Vec3]) -> f64 {
         let mut tau: f64 = 1.0;
-        if let Some(pairs) = &mut self.pairs {
-            tau = pairs.limit(system, x, dx, (KEEP, self.activation));
-        }
         for (i, (&xi, &di)) in x.iter().zip(dx).enumerate() {
             if system.is_pinned(i) || di == Vec3::zeros() {
                 continue;
             }
             tau = tau.min(self.obstacles.limit(i, xi, di, KEEP));
         }
-        tau
+        let Some(pairs) = &mut self.pairs else {
+            return tau;
+        };
+        if tau <= 0.0 {
+            return 0.0;
+        }
+        let motion = if tau < 1.0 {
+            self.shortened.clear();
+            self.shortened.extend(dx.iter().map(|d| tau * d));
+            &self.shortened
+        } else {
+            dx
+        };
+        tau * pairs.limit(system, x, motion, (KEEP, self.activation))
     }
 
     /// The number of pairs closer than the contact distance at positions

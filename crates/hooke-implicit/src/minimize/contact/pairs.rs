@@ -767,4 +767,81 @@ mod tests {
             assert!(close > 0, "motions of {size} d̂ bring no pair within d̂");
         }
     }
+
+    /// The whole contact limit checks the pairs along the part of a motion
+    /// the obstacles allow: the two sheets 3 mm above a floor, moved down
+    /// by 2 to 8 mm with each particle in its own direction besides, stop
+    /// no later than the floor stops them and no earlier than checking
+    /// their pairs along the whole motion would (CCD's bound, conservative,
+    /// tightens on the shorter motion), and along the motion to that point
+    /// every pair of the two surfaces keeps more than a tenth of its gap.
+    #[test]
+    fn the_contact_limit_checks_pairs_along_what_the_obstacles_allow() {
+        use hooke_core::{Obstacle, Shape};
+
+        use crate::minimize::contact::{Contact, KEEP};
+
+        let mut b = SystemBuilder::new();
+        for height in [0.0, 2e-3] {
+            sheet(&mut b, 6, 0.04, Vec3::new(0.3 * height, height, 0.0));
+        }
+        b.contact_distance(1e-3);
+        b.obstacle(Obstacle::new(Shape::Plane {
+            point: Vec3::new(0.0, -3e-3, 0.0),
+            normal: Vec3::y(),
+        }));
+        let system = b.build().unwrap();
+        let d_hat = system.contact_distance();
+        let x0 = system.initial_positions().to_vec();
+        let mut everything = Candidates::default();
+        BroadPhase::default().proximity(system.surfaces(), &x0, 1.0, &mut everything);
+        let mut contact = Contact::default();
+        contact.begin(&system, &x0, 0.0, 1e-2);
+        let mut unit = uniform(11);
+        let (mut floor_first, mut pairs_first) = (0, 0);
+        for case in 0..24 {
+            let drop = 2e-3 + 6e-3 * f64::from(case) / 24.0;
+            let dx: Vec<Vec3> = x0
+                .iter()
+                .map(|_| {
+                    let d = Vec3::new(unit(), unit(), unit());
+                    4.0 * d_hat * d - drop * Vec3::y()
+                })
+                .collect();
+            let floor = (0..x0.len())
+                .map(|i| contact.obstacles.limit(i, x0[i], dx[i], KEEP))
+                .fold(1.0, f64::min);
+            let mut whole = Pairs::default();
+            whole.begin(&system);
+            whole.search(&system, &x0, d_hat);
+            let surfaces = whole.limit(&system, &x0, &dx, (KEEP, d_hat));
+            let tau = contact.limit(&system, &x0, &dx);
+            assert!(
+                tau <= floor && tau >= floor.min(surfaces) * (1.0 - 1e-12),
+                "drop {drop}: {tau} against floor {floor}, surfaces {surfaces}"
+            );
+            for pair in Pairs::pairs(&system, &everything) {
+                let start = Pairs::gap(&pair, Pairs::squared(&pair, &x0));
+                for step in 1..=10 {
+                    let t = tau * f64::from(step) / 10.0;
+                    let x: Vec<Vec3> = x0.iter().zip(&dx).map(|(x, d)| x + t * d).collect();
+                    let gap = Pairs::gap(&pair, Pairs::squared(&pair, &x));
+                    assert!(
+                        gap > KEEP * start,
+                        "drop {drop}: {:?} at {t}",
+                        pair.particles
+                    );
+                }
+            }
+            if floor < surfaces {
+                floor_first += 1;
+            } else if surfaces < 1.0 {
+                pairs_first += 1;
+            }
+        }
+        assert!(
+            floor_first > 0 && pairs_first > 0,
+            "{floor_first}, {pairs_first}"
+        );
+    }
 }
