@@ -2,9 +2,7 @@
 //! this file by its path).
 
 use hooke::core::CompressedSprings;
-use hooke::implicit::internals::{
-    Assembler, BlockJacobi, BlockMatrix, Filter, Linearization, Pattern,
-};
+use hooke::implicit::internals::{Assembler, BlockJacobi, BlockMatrix, Linearization, Pattern};
 use hooke::prelude::*;
 use hooke::scenes::{Mass, Springs, TetSplit, Volume};
 
@@ -75,19 +73,9 @@ pub fn linearised_step(
 }
 
 /// The constraint filters of `system`'s pins: `Fixed` for a pinned
-/// particle, `Free` otherwise.
-#[allow(dead_code)] // only the linear-solver tests and benches filter
-pub fn pin_filters(system: &System) -> Vec<Filter> {
-    (0..system.particle_count())
-        .map(|i| {
-            if system.is_pinned(i) {
-                Filter::Fixed
-            } else {
-                Filter::Free
-            }
-        })
-        .collect()
-}
+/// particle, `Free` otherwise (the library's own, which its solvers use).
+#[allow(unused_imports)] // only the linear-solver tests and benches filter
+pub use hooke::implicit::internals::pin_filters;
 
 /// A rope of `segments + 1` particles, 10 m, 1 kg, stretch / bend springs of
 /// 10 000 / 100 N/m (stretch damped by 0.05 N·s/m), its start pinned.

@@ -142,7 +142,7 @@ pub mod internals {
     pub use crate::linear::cholesky::{
         CholeskyError, CholeskyInfo, FactorPreconditioner, FillOrdering, SparseCholesky,
     };
-    pub use crate::linear::filter::Filter;
+    pub use crate::linear::filter::{Filter, pin_filters};
     pub use crate::linear::matrix::BlockMatrix;
     pub use crate::linear::pattern::Pattern;
     pub use crate::linear::vector::PARALLEL_MIN_PARTICLES;

@@ -48,7 +48,8 @@ impl Filter {
 
 /// Every particle's filter from its pin alone: [`Filter::Fixed`] for a
 /// pinned particle, [`Filter::Free`] otherwise.
-pub(crate) fn pin_filters(system: &System) -> Vec<Filter> {
+#[must_use]
+pub fn pin_filters(system: &System) -> Vec<Filter> {
     (0..system.particle_count())
         .map(|i| {
             if system.is_pinned(i) {

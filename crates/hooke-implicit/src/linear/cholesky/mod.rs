@@ -217,32 +217,7 @@ impl SparseCholesky {
             }
         }
         drop(neighbours);
-        let symbolic = match ordering {
-            FillOrdering::Particles => {
-                // faer analyses a matrix it does not order from its upper
-                // triangle.
-                let (upper_ptr, upper_idx) = transpose(dofs, &col_ptr, &row_idx);
-                let upper =
-                    SymbolicSparseColMatRef::new_checked(dofs, dofs, &upper_ptr, None, &upper_idx);
-                factorize_symbolic_cholesky(
-                    upper,
-                    Side::Upper,
-                    SymmetricOrdering::Identity,
-                    CholeskySymbolicParams::default(),
-                )
-            }
-            FillOrdering::Scalar => {
-                let lower =
-                    SymbolicSparseColMatRef::new_checked(dofs, dofs, &col_ptr, None, &row_idx);
-                factorize_symbolic_cholesky(
-                    lower,
-                    Side::Lower,
-                    SymmetricOrdering::Amd,
-                    CholeskySymbolicParams::default(),
-                )
-            }
-        }
-        .map_err(|_| too_large())?;
+        let symbolic = analyse(dofs, &col_ptr, &row_idx, ordering).map_err(|_| too_large())?;
         let par = parallelism(n);
         let factor_memory =
             MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
@@ -464,6 +439,42 @@ impl Preconditioner for FactorPreconditioner<'_> {
             .borrow_mut()
             .solve_factored(self.filters, r, z);
     }
+}
+
+/// faer's symbolic factorization of the `dofs × dofs` matrix whose lower
+/// triangle has the compressed columns `col_ptr`, `row_idx`, in the
+/// particles' order or ordered by faer ([`FillOrdering`]). faer analyses a
+/// matrix it does not order from its upper triangle, built here and
+/// dropped after.
+fn analyse(
+    dofs: usize,
+    col_ptr: &[u32],
+    row_idx: &[u32],
+    ordering: FillOrdering,
+) -> Result<SymbolicCholesky<u32>, faer::sparse::FaerError> {
+    let upper;
+    let (pattern, side, fill_ordering) = match ordering {
+        FillOrdering::Particles => {
+            upper = transpose(dofs, col_ptr, row_idx);
+            let (upper_ptr, upper_idx) = &upper;
+            (
+                SymbolicSparseColMatRef::new_checked(dofs, dofs, upper_ptr, None, upper_idx),
+                Side::Upper,
+                SymmetricOrdering::Identity,
+            )
+        }
+        FillOrdering::Scalar => (
+            SymbolicSparseColMatRef::new_checked(dofs, dofs, col_ptr, None, row_idx),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+        ),
+    };
+    factorize_symbolic_cholesky(
+        pattern,
+        side,
+        fill_ordering,
+        CholeskySymbolicParams::default(),
+    )
 }
 
 /// The pattern of the transpose of the `dofs × dofs` pattern in compressed
