@@ -264,7 +264,31 @@ fn contact_line(summary: &Summary) -> Option<String> {
     let end = summary
         .intersecting_triangle_pairs
         .map_or_else(String::new, |n| {
-            format!(", {n} intersecting triangle pairs at the end")
+            let by_body = summary
+                .intersections
+                .iter()
+                .flatten()
+                .map(|i| {
+                    let [a, b] = &i.bodies;
+                    let which = if a == b {
+                        format!("{a} with itself")
+                    } else {
+                        format!("{a} and {b}")
+                    };
+                    let allowed = if i.collide {
+                        ""
+                    } else {
+                        ", self-collision off"
+                    };
+                    format!("{which}: {}{allowed}", i.pairs)
+                })
+                .collect::<Vec<_>>();
+            let by_body = if by_body.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", by_body.join("; "))
+            };
+            format!(", {n} intersecting triangle pairs at the end{by_body}")
         });
     Some(format!(
         "contact: at most {pairs} close pairs, {closest}{end}"

@@ -58,10 +58,11 @@
 //!
 //! For a scene with collision surfaces (see `docs/scene-format.md`),
 //! `summary.json` also holds `contact_distance`, `close_pairs_max`,
-//! `smallest_distance` and `intersecting_triangle_pairs` ([`Summary`]), and
-//! `hooke run` prints them as `contact: at most N close pairs, smallest
-//! distance D m (contact distance d̂ m), K intersecting triangle pairs at
-//! the end`. An integrator that cannot keep surfaces apart (every one but
+//! `smallest_distance`, `intersecting_triangle_pairs` and, by the bodies
+//! they belong to, `intersections` ([`Summary`]), and `hooke run` prints
+//! them as `contact: at most N close pairs, smallest distance D m (contact
+//! distance d̂ m), K intersecting triangle pairs at the end`, followed where
+//! K is not 0 by the bodies, e.g. `(cube with itself: 96)`. An integrator that cannot keep surfaces apart (every one but
 //! backward Euler and BDF2) fails on a scene whose surfaces collide at its
 //! first step: the command exits with status 1 and `summary.json`'s
 //! `error` says why. The lab commands run such integrators on the scene

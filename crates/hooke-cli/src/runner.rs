@@ -6,9 +6,9 @@ use std::fs;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use hooke_core::collision::intersect::intersecting_triangle_pairs;
+use hooke_core::collision::intersect::intersecting_triangle_pairs_by_surface;
 use hooke_core::{
-    EnergyLog, Observer, Simulation, State, StepError, StepReport, StrainLog, System,
+    EnergyLog, Observer, Simulation, State, StepError, StepReport, StrainLog, System, Vec3,
 };
 use hooke_lab::EnergyBudget;
 use hooke_scenes::{IntegratorSpec, Scene, Timing};
@@ -19,7 +19,7 @@ use crate::frames::FrameWriter;
 use crate::pictures::write_pictures;
 use crate::run_options::{RunOptions, SUMMARY_FILE};
 use crate::step_record::StepRecord;
-use crate::summary::{Summary, median};
+use crate::summary::{Intersections, Summary, median};
 use crate::surface_record::SurfaceRecord;
 use crate::volume_record::VolumeRecord;
 
@@ -54,8 +54,9 @@ use crate::volume_record::VolumeRecord;
 /// inverted after every step ([`Summary::inverted_elements_max`]), an
 /// [`EnergyLog`] and a [`StrainLog`] sampled at the written frames, and `progress`, the caller's (a progress
 /// bar), called after every step. For a system with collision surfaces the
-/// last state's intersecting triangles are counted
-/// ([`Summary::intersecting_triangle_pairs`]). The wall time spent
+/// last state's intersecting triangles are counted, in all and by the
+/// bodies they belong to ([`Summary::intersecting_triangle_pairs`],
+/// [`Summary::intersections`]). The wall time spent
 /// writing frames and pictures is [`Summary::output_s`].
 ///
 /// A step that fails (a non-finite state, a solver failure) or leaves a
@@ -151,6 +152,8 @@ pub fn run(
         .positions()
         .iter()
         .all(|x| x.iter().all(|c| c.is_finite()));
+    let intersections =
+        (has_surfaces && finite_end).then(|| intersections(scene, state.positions()));
     let summary = Summary {
         scene: scene.name.clone(),
         integrator: integrator.name().to_owned(),
@@ -187,8 +190,10 @@ pub fn run(
         contact_distance: has_surfaces.then(|| system.contact_distance()),
         close_pairs_max: has_surfaces.then_some(surfaces.close_pairs_max),
         smallest_distance: surfaces.smallest_distance,
-        intersecting_triangle_pairs: (has_surfaces && finite_end)
-            .then(|| intersecting_triangle_pairs(system.surfaces(), state.positions())),
+        intersecting_triangle_pairs: intersections
+            .as_ref()
+            .map(|all| all.iter().map(|i| i.pairs).sum()),
+        intersections,
         inverted_elements_max: volumes.inverted_max,
         volume_ratio_min: volumes.smallest_ratio,
         energy_initial: energies.first().map_or(f64::NAN, |s| s.energy.total()),
@@ -311,4 +316,31 @@ fn mean(count: usize, steps: usize) -> f64 {
     } else {
         count as f64 / steps as f64
     }
+}
+
+/// The intersecting triangle pairs of `scene`'s surfaces at `positions`, by
+/// the bodies the surfaces belong to (the body holding a surface's first
+/// triangle's first particle; `surface g` for a surface no body places).
+fn intersections(scene: &Scene, positions: &[Vec3]) -> Vec<Intersections> {
+    let mesh = scene.system.surfaces();
+    let mut names: Vec<Option<String>> = vec![None; scene.system.surface_count()];
+    for (t, triangle) in mesh.triangles().iter().enumerate() {
+        let name = &mut names[mesh.triangle_group(t)];
+        if name.is_none() {
+            *name = scene
+                .bodies
+                .iter()
+                .find(|b| b.placement.range().contains(&triangle[0]))
+                .map(|b| b.name.clone());
+        }
+    }
+    let name = |g: usize| names[g].clone().unwrap_or_else(|| format!("surface {g}"));
+    intersecting_triangle_pairs_by_surface(mesh, positions)
+        .into_iter()
+        .map(|((g, h), pairs)| Intersections {
+            bodies: [name(g), name(h)],
+            pairs,
+            collide: mesh.collides(g, h),
+        })
+        .collect()
 }

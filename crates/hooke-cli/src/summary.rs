@@ -131,6 +131,12 @@ pub struct Summary {
     /// tangled in itself or another. `None` without collision surfaces or
     /// for a last state that is not finite.
     pub intersecting_triangle_pairs: Option<usize>,
+    /// [`Summary::intersecting_triangle_pairs`] by the bodies whose
+    /// surfaces the triangles belong to: an entry for every pair of bodies
+    /// (or body with itself) with any, in the order of the surfaces; empty
+    /// when there are none, `None` where that count is.
+    #[serde(default)]
+    pub intersections: Option<Vec<Intersections>>,
     /// Most volume elements inverted at once — tets whose signed volume
     /// ratio `J = V/V₀` is at most 0 (see `hooke_core::Tet`) — in the
     /// initial state or after a step; `None` for a system without volume
@@ -157,6 +163,22 @@ pub struct Summary {
     pub error: Option<String>,
     /// The directory the files were written to.
     pub out: PathBuf,
+}
+
+/// The intersecting triangle pairs between the surfaces of two bodies, or
+/// of one body with itself, in the last state of a run
+/// ([`Summary::intersections`]).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Intersections {
+    /// The bodies, by their names in the scene (the same name twice for a
+    /// body passing through itself).
+    pub bodies: [String; 2],
+    /// How many pairs of their triangles intersect.
+    pub pairs: usize,
+    /// Whether the contact model keeps these surfaces apart: `false` only
+    /// for a body with itself whose `self_collision` is off, where
+    /// intersections are allowed.
+    pub collide: bool,
 }
 
 /// A linear solver's name, an entry of [`LinearSolver::NAMES`]. (A name

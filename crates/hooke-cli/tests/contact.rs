@@ -32,6 +32,21 @@ fn scene(dir: &Path, name: &str, method: &str, bodies: &str) -> PathBuf {
     path
 }
 
+/// `hooke run` on `file` into `out` with the options `extra`, without the
+/// animation or a progress bar.
+fn run(file: &Path, out: &Path, extra: &[&str]) -> (ExitCode, String, String) {
+    let mut args = vec![
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--no-gif",
+        "-q",
+    ];
+    args.extend_from_slice(extra);
+    hooke(&args)
+}
+
 fn json(path: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
@@ -46,16 +61,7 @@ fn a_run_with_colliding_surfaces_reports_how_close_they_came() {
     let dir = tempfile::tempdir().unwrap();
     let file = scene(dir.path(), "stack", "backward-euler", &two_cloths());
     let out = dir.path().join("out");
-    let (code, stdout, stderr) = hooke(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--no-gif",
-        "-q",
-        "--duration",
-        "0.03",
-    ]);
+    let (code, stdout, stderr) = run(&file, &out, &["--duration", "0.03"]);
     assert_eq!(code, ExitCode::SUCCESS, "{stdout}\n{stderr}");
     let summary = json(&out.join("summary.json"));
     assert!((summary["contact_distance"].as_f64().unwrap() - 5e-3).abs() < 1e-15);
@@ -65,6 +71,7 @@ fn a_run_with_colliding_surfaces_reports_how_close_they_came() {
     let smallest = summary["smallest_distance"].as_f64().unwrap();
     assert!(smallest > 0.0 && smallest <= 3e-3 + 1e-12, "{smallest}");
     assert_eq!(summary["intersecting_triangle_pairs"].as_u64(), Some(0));
+    assert_eq!(summary["intersections"], serde_json::json!([]), "{summary}");
     let line = stdout
         .lines()
         .find(|l| l.starts_with("contact: "))
@@ -86,14 +93,7 @@ fn a_run_without_surfaces_has_null_contact_fields_and_no_contact_line() {
                 stretch = { stiffness = 10.0 }\n";
     let file = scene(dir.path(), "rope", "velocity-verlet", rope);
     let out = dir.path().join("out");
-    let (code, stdout, stderr) = hooke(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--no-gif",
-        "-q",
-    ]);
+    let (code, stdout, stderr) = run(&file, &out, &[]);
     assert_eq!(code, ExitCode::SUCCESS, "{stdout}\n{stderr}");
     let summary = json(&out.join("summary.json"));
     for key in [
@@ -101,6 +101,7 @@ fn a_run_without_surfaces_has_null_contact_fields_and_no_contact_line() {
         "close_pairs_max",
         "smallest_distance",
         "intersecting_triangle_pairs",
+        "intersections",
     ] {
         assert!(summary[key].is_null(), "{key} in {summary}");
     }
@@ -112,14 +113,7 @@ fn a_self_colliding_cloth_far_from_itself_has_no_smallest_distance() {
     let dir = tempfile::tempdir().unwrap();
     let file = scene(dir.path(), "one", "backward-euler", &cloth(0.0, ""));
     let out = dir.path().join("out");
-    let (code, stdout, stderr) = hooke(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--no-gif",
-        "-q",
-    ]);
+    let (code, stdout, stderr) = run(&file, &out, &[]);
     assert_eq!(code, ExitCode::SUCCESS, "{stdout}\n{stderr}");
     let summary = json(&out.join("summary.json"));
     assert_eq!(summary["close_pairs_max"].as_u64(), Some(0));
@@ -135,14 +129,7 @@ fn an_explicit_method_refuses_a_self_colliding_scene_with_a_clear_error() {
     let dir = tempfile::tempdir().unwrap();
     let file = scene(dir.path(), "one", "velocity-verlet", &cloth(0.0, ""));
     let out = dir.path().join("out");
-    let (code, stdout, stderr) = hooke(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--no-gif",
-        "-q",
-    ]);
+    let (code, stdout, stderr) = run(&file, &out, &[]);
     assert_eq!(code, ExitCode::FAILURE, "{stdout}\n{stderr}");
     let reason = "velocity-verlet cannot keep surfaces from passing through each other";
     assert!(stderr.starts_with("error: "), "{stderr}");
@@ -160,14 +147,7 @@ fn an_explicit_method_refuses_a_self_colliding_scene_with_a_clear_error() {
         "velocity-verlet",
         &cloth(0.0, "self_collision = false"),
     );
-    let (code, stdout, stderr) = hooke(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--no-gif",
-        "-q",
-    ]);
+    let (code, stdout, stderr) = run(&file, &out, &[]);
     assert_eq!(code, ExitCode::SUCCESS, "{stdout}\n{stderr}");
 }
 
@@ -316,5 +296,41 @@ fn accuracy_on_colliding_bodies_is_an_error_naming_why() {
     assert!(
         stderr.contains("surfaces of different bodies collide"),
         "{stderr}"
+    );
+}
+
+/// A shell of two triangles passing through each other, with
+/// self-collision off, held still (no gravity) by an explicit method: the
+/// summary counts the one intersecting pair and names the body, with
+/// itself, where the contact model does not keep it apart, and the last
+/// lines say so.
+#[test]
+fn intersecting_triangles_are_reported_by_body() {
+    let dir = tempfile::tempdir().unwrap();
+    // A triangle in the plane z = 0 and one through it along z.
+    let obj = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0.02 0.02 -0.05\nv 0.03 0.02 0.05\n\
+               v 0.02 0.03 0.05\nf 1 2 3\nf 4 5 6\n";
+    std::fs::write(dir.path().join("crossed.obj"), obj).unwrap();
+    let body = "[[bodies]]\ntype = \"obj\"\nname = \"crossed\"\nmesh = \"crossed.obj\"\n\
+                edges = { stiffness = 10.0 }\nself_collision = false\n";
+    let file = scene(dir.path(), "crossed", "velocity-verlet", body);
+    let out = dir.path().join("out");
+    let (code, stdout, stderr) = run(&file, &out, &[]);
+    assert_eq!(code, ExitCode::SUCCESS, "{stdout}\n{stderr}");
+    let summary = json(&out.join("summary.json"));
+    assert_eq!(summary["intersecting_triangle_pairs"].as_u64(), Some(1));
+    let expected: Value = serde_json::json!([
+        { "bodies": ["crossed", "crossed"], "pairs": 1, "collide": false }
+    ]);
+    assert_eq!(summary["intersections"], expected, "{summary}");
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("contact: "))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    assert!(
+        line.ends_with(
+            "1 intersecting triangle pairs at the end (crossed with itself: 1, self-collision off)"
+        ),
+        "{line}"
     );
 }

@@ -1,5 +1,5 @@
-//! Exact triangle–triangle intersection, for reports: how many pairs of a
-//! mesh's triangles pass through (or touch) each other.
+//! Triangle–triangle intersection, for reports: how many pairs of a mesh's
+//! triangles pass through (or touch) each other.
 //!
 //! The test uses only the signs of orientation determinants,
 //!
@@ -10,10 +10,15 @@
 //! six times the signed volume of the tetrahedron `abcd` (positive when `d`
 //! lies below the plane of `abc` seen counter-clockwise), and their planar
 //! counterparts `orient₂(a, b, c) = (a − c) ⨯ (b − c)` for coplanar points
-//! projected onto a coordinate plane. The decisions are exact for the
-//! computed signs: the answer is wrong only where a determinant's rounding
-//! flips its sign, i.e. within a few ulps of touching. No divisions, no
-//! tolerances, no intersection points.
+//! projected onto a coordinate plane. A determinant within its rounding
+//! error bound of zero counts as zero (the sign is then not known), so
+//! every sign the tests use is the exact one of the inputs, and the
+//! degenerate cases — an end on a plane, points on one line — are decided
+//! by planar tests and extents instead of by signs that rounding chose:
+//! on a flat face a few ulps out of plane, as a falling body's is, those
+//! signs made triangles that do not touch look crossed. The answer can
+//! then only be wrong for points within rounding of touching. No
+//! divisions, no intersection points.
 //!
 //! Two closed triangles share a point exactly when a side of one meets the
 //! other: if they are not coplanar, their intersection is a segment of the
@@ -27,30 +32,58 @@ use crate::Vec3;
 use super::broad::BroadPhase;
 use super::surface::CollisionMesh;
 
-/// `(a − d)·((b − d) × (c − d))`, six times the signed volume of `abcd`.
+/// `(a − d)·((b − d) × (c − d))`, six times the signed volume of `abcd`,
+/// or 0 where rounding could have given it its sign: where it is at most
+/// `8ε ‖a − d‖₁ ‖b − d‖₁ ‖c − d‖₁`, above Shewchuk's bound `(7ε + 56ε²)`
+/// times the sum of its terms' magnitudes (*Adaptive precision
+/// floating-point arithmetic and fast robust geometric predicates*, 1997;
+/// his `ε` is half of `f64::EPSILON`).
 fn orient(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> f64 {
-    (a - d).dot(&(b - d).cross(&(c - d)))
+    let (x, y, z) = (a - d, b - d, c - d);
+    let det = x.dot(&y.cross(&z));
+    let bound = 8.0 * f64::EPSILON * x.lp_norm(1) * y.lp_norm(1) * z.lp_norm(1);
+    if det.abs() <= bound { 0.0 } else { det }
 }
 
 /// Whether the closed segment `pq` meets the closed triangle `abc`.
 ///
-/// With `s_p = orient(a, b, c, p)` and `s_q` likewise: ends strictly on one
-/// side of the plane miss it. Otherwise, if one of them is not zero, the
-/// line `pq` crosses the plane at one point, which is in the triangle when
-/// `orient(p, q, a, b)`, `orient(p, q, b, c)`, `orient(p, q, c, a)` do not
-/// have opposite signs (the line passes on the same side of all three sides,
-/// or on one of them). If both are zero the segment lies in the plane of the
-/// triangle (or the triangle is degenerate) and the test is planar.
+/// A segment whose box does not touch the triangle's misses it. With
+/// `s_p = orient(a, b, c, p)` and `s_q` likewise (0 where rounding could
+/// have given the sign, see [`orient`]): ends strictly on one side of the
+/// plane miss it; an end on the plane meets the triangle where it lies in
+/// it (a planar test), and a segment in the plane where it meets it in the
+/// plane. Otherwise the segment crosses the plane at one point, which is in
+/// the triangle when `orient(p, q, a, b)`, `orient(p, q, b, c)` and
+/// `orient(p, q, c, a)` do not have opposite signs (the line passes on the
+/// same side of all three sides, or on one of them; all three 0 only for a
+/// degenerate triangle, tested in its plane).
+///
+/// Nearly coplanar points are why the zeros are certified and the ends on
+/// the plane tested in it: an end a few ulps off the plane of a flat
+/// body's face made the line's orientations with the sides rounding noise,
+/// and triangles of a falling lattice's face that do not touch were
+/// reported intersecting.
 fn segment_meets_triangle(p: Vec3, q: Vec3, [a, b, c]: [Vec3; 3]) -> bool {
-    let (sp, sq) = (orient(a, b, c, p), orient(a, b, c, q));
-    if (sp > 0.0 && sq > 0.0) || (sp < 0.0 && sq < 0.0) {
+    let (lo, hi) = (p.inf(&q), p.sup(&q));
+    let (low, high) = (a.inf(&b).inf(&c), a.sup(&b).sup(&c));
+    if (0..3).any(|k| hi[k] < low[k] || high[k] < lo[k]) {
         return false;
     }
-    if sp != 0.0 || sq != 0.0 {
-        let (u, v, w) = (orient(p, q, a, b), orient(p, q, b, c), orient(p, q, c, a));
-        return (u >= 0.0 && v >= 0.0 && w >= 0.0) || (u <= 0.0 && v <= 0.0 && w <= 0.0);
+    let triangle = [a, b, c];
+    let (sp, sq) = (orient(a, b, c, p), orient(a, b, c, q));
+    match (sp == 0.0, sq == 0.0) {
+        _ if (sp > 0.0 && sq > 0.0) || (sp < 0.0 && sq < 0.0) => false,
+        (true, true) => coplanar_segment_triangle(p, q, triangle),
+        (true, false) => coplanar_segment_triangle(p, p, triangle),
+        (false, true) => coplanar_segment_triangle(q, q, triangle),
+        (false, false) => {
+            let (u, v, w) = (orient(p, q, a, b), orient(p, q, b, c), orient(p, q, c, a));
+            if u == 0.0 && v == 0.0 && w == 0.0 {
+                return coplanar_segment_triangle(p, q, triangle);
+            }
+            (u >= 0.0 && v >= 0.0 && w >= 0.0) || (u <= 0.0 && v <= 0.0 && w <= 0.0)
+        }
     }
-    coplanar_segment_triangle(p, q, [a, b, c])
 }
 
 /// Whether the segment `pq` meets the triangle `abc`, all five points in
@@ -90,9 +123,15 @@ fn coplanar_segment_triangle(p: Vec3, q: Vec3, [a, b, c]: [Vec3; 3]) -> bool {
         || segments_meet(p, q, c, a)
 }
 
-/// `(a − c) ⨯ (b − c)`, twice the signed area of `abc`.
+/// `(a − c) ⨯ (b − c)`, twice the signed area of `abc`, or 0 where
+/// rounding could have given it its sign: at most
+/// `4ε ‖a − c‖₁ ‖b − c‖₁`, above Shewchuk's bound `(3ε + 16ε²)` times the
+/// sum of its terms' magnitudes (see [`orient`]).
 fn orient2(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    (a[0] - c[0]) * (b[1] - c[1]) - (a[1] - c[1]) * (b[0] - c[0])
+    let (x, y) = ([a[0] - c[0], a[1] - c[1]], [b[0] - c[0], b[1] - c[1]]);
+    let det = x[0] * y[1] - x[1] * y[0];
+    let bound = 4.0 * f64::EPSILON * (x[0].abs() + x[1].abs()) * (y[0].abs() + y[1].abs());
+    if det.abs() <= bound { 0.0 } else { det }
 }
 
 /// Whether `p` lies in the closed planar triangle `abc`: on no strict
@@ -106,21 +145,30 @@ fn point_in_triangle(p: [f64; 2], [a, b, c]: [[f64; 2]; 3]) -> bool {
     (u >= 0.0 && v >= 0.0 && w >= 0.0) || (u <= 0.0 && v <= 0.0 && w <= 0.0)
 }
 
-/// Whether the closed planar segments `pq` and `rs` meet: each one's ends
-/// not strictly on one side of the other's line, and if all four points are
-/// on one line, their extents overlapping.
+/// Whether the closed planar segments `pq` and `rs` meet: their boxes
+/// overlap, and either each one's ends lie strictly on both sides of the
+/// other's line, or an end lies on the other's line within the other's
+/// extent (Cormen et al., *Introduction to Algorithms*, §33.1). An end on
+/// the other's line is not enough by itself: two collinear segments far
+/// apart have it, and rounding then gives the other ends' orientations
+/// any sign.
 fn segments_meet(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
-    let (o1, o2) = (orient2(p, q, r), orient2(p, q, s));
-    let (o3, o4) = (orient2(r, s, p), orient2(r, s, q));
-    let apart = |x: f64, y: f64| (x > 0.0 && y > 0.0) || (x < 0.0 && y < 0.0);
-    if apart(o1, o2) || apart(o3, o4) {
+    let within = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+        (0..2).all(|k| a[k].min(b[k]) <= c[k] && c[k] <= a[k].max(b[k]))
+    };
+    let overlap =
+        (0..2).all(|k| p[k].min(q[k]) <= r[k].max(s[k]) && r[k].min(s[k]) <= p[k].max(q[k]));
+    if !overlap {
         return false;
     }
-    if o1 != 0.0 || o2 != 0.0 || o3 != 0.0 || o4 != 0.0 {
-        return true;
-    }
-    // Collinear: the boxes must overlap.
-    (0..2).all(|k| p[k].min(q[k]) <= r[k].max(s[k]) && r[k].min(s[k]) <= p[k].max(q[k]))
+    let (o1, o2) = (orient2(p, q, r), orient2(p, q, s));
+    let (o3, o4) = (orient2(r, s, p), orient2(r, s, q));
+    let across = |x: f64, y: f64| (x > 0.0 && y < 0.0) || (x < 0.0 && y > 0.0);
+    (across(o1, o2) && across(o3, o4))
+        || (o1 == 0.0 && within(p, q, r))
+        || (o2 == 0.0 && within(p, q, s))
+        || (o3 == 0.0 && within(r, s, p))
+        || (o4 == 0.0 && within(r, s, q))
 }
 
 /// Whether two closed triangles intersect (share a point), exactly where
@@ -157,11 +205,223 @@ pub fn triangles_intersect(a: [Vec3; 3], b: [Vec3; 3]) -> bool {
 /// If a particle of the mesh has no position in `x`.
 #[must_use]
 pub fn intersecting_triangle_pairs(mesh: &CollisionMesh, x: &[Vec3]) -> usize {
+    intersecting(mesh, x).len()
+}
+
+/// The intersecting pairs of [`intersecting_triangle_pairs`] counted by the
+/// surfaces their triangles belong to: `((g, h), count)` for every pair of
+/// surfaces `g ≤ h` that has any (`g = h`: a surface passing through
+/// itself), in increasing order of `(g, h)`.
+///
+/// ```
+/// use hooke_core::Vec3;
+/// use hooke_core::collision::{intersect::intersecting_triangle_pairs_by_surface, surface::CollisionMesh};
+/// let flat = [Vec3::zeros(), Vec3::x(), Vec3::z()];
+/// let piercing = [Vec3::new(0.2, -1.0, 0.2), Vec3::new(0.2, 1.0, 0.2), Vec3::new(0.3, 1.0, 0.25)];
+/// let far = Vec3::new(5.0, 0.0, 0.0);
+/// // Surfaces 0 and 1 pass through each other; surface 2, far off, through itself.
+/// let mut mesh = CollisionMesh::new();
+/// mesh.add_surface(&[[0, 1, 2]], true);
+/// mesh.add_surface(&[[3, 4, 5]], true);
+/// mesh.add_surface(&[[6, 7, 8], [9, 10, 11]], false);
+/// let x: Vec<Vec3> = [flat, piercing, flat.map(|p| p + far), piercing.map(|p| p + far)]
+///     .concat();
+/// assert_eq!(
+///     intersecting_triangle_pairs_by_surface(&mesh, &x),
+///     vec![((0, 1), 1), ((2, 2), 1)]
+/// );
+/// ```
+///
+/// # Panics
+/// If a particle of the mesh has no position in `x`.
+#[must_use]
+pub fn intersecting_triangle_pairs_by_surface(
+    mesh: &CollisionMesh,
+    x: &[Vec3],
+) -> Vec<((usize, usize), usize)> {
+    let mut counts: Vec<((usize, usize), usize)> = Vec::new();
+    let mut surfaces: Vec<(usize, usize)> = intersecting(mesh, x)
+        .into_iter()
+        .map(|(s, t)| {
+            let (g, h) = (
+                mesh.triangle_group(s as usize),
+                mesh.triangle_group(t as usize),
+            );
+            (g.min(h), g.max(h))
+        })
+        .collect();
+    surfaces.sort_unstable();
+    for pair in surfaces {
+        match counts.last_mut() {
+            Some((last, count)) if *last == pair => *count += 1,
+            _ => counts.push((pair, 1)),
+        }
+    }
+    counts
+}
+
+/// The pairs of the mesh's triangles at `x` that intersect, as triangle
+/// indices (see [`intersecting_triangle_pairs`]).
+fn intersecting(mesh: &CollisionMesh, x: &[Vec3]) -> Vec<(u32, u32)> {
     let mut pairs = Vec::new();
     BroadPhase::default().triangle_pairs(mesh, x, 0.0, &mut pairs);
     let corners = |t: u32| mesh.triangles()[t as usize].map(|p| x[p]);
+    pairs.retain(|&(s, t)| triangles_intersect(corners(s), corners(t)));
     pairs
-        .iter()
-        .filter(|&&(s, t)| triangles_intersect(corners(s), corners(t)))
-        .count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two surfaces of a 5 × 5 grid's triangles each, every particle at a
+    /// pseudo-random point of the unit cube: crumpled through each other and
+    /// through themselves.
+    fn crumpled() -> (CollisionMesh, Vec<Vec3>) {
+        let side = 5;
+        let grid = |offset: usize| {
+            let mut triangles = Vec::new();
+            for r in 0..side - 1 {
+                for c in 0..side - 1 {
+                    let p = offset + r * side + c;
+                    triangles.push([p, p + 1, p + side]);
+                    triangles.push([p + 1, p + side + 1, p + side]);
+                }
+            }
+            triangles
+        };
+        let mut mesh = CollisionMesh::new();
+        mesh.add_surface(&grid(0), true);
+        mesh.add_surface(&grid(side * side), false);
+        // xorshift64, mapped to [0, 1).
+        let mut seed = 0x2545_F491_4F6C_DD1D_u64;
+        let mut uniform = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let x = (0..2 * side * side)
+            .map(|_| Vec3::new(uniform(), uniform(), uniform()))
+            .collect();
+        (mesh, x)
+    }
+
+    /// Two triangles of a lattice's flat face, 0.2 m apart, whose diagonals
+    /// lie on one line, at the coordinates a falling lattice gave them (so
+    /// that the orientations of their collinear corners are rounding noise):
+    /// they were reported intersecting.
+    #[test]
+    fn coplanar_triangles_with_collinear_sides_far_apart_do_not_intersect() {
+        let y = 1.499_318_75;
+        let a = [
+            Vec3::new(-0.45, y, -0.15),
+            Vec3::new(-0.4, y, -0.15),
+            Vec3::new(-0.4, y, -0.1),
+        ];
+        let b = [
+            Vec3::new(-0.25, y, 0.049_999_999_999_999_99),
+            Vec3::new(-0.2, y, 0.049_999_999_999_999_99),
+            Vec3::new(-0.2, y, 0.099_999_999_999_999_98),
+        ];
+        assert!(!triangles_intersect(a, b));
+        assert!(!triangles_intersect(b, a));
+        // The same pair moved onto each other's diagonal line does meet:
+        // b's corner on a's far corner.
+        let shift = a[0] - b[2];
+        assert!(triangles_intersect(a, b.map(|p| p + shift)));
+    }
+
+    /// A flat 8 × 8 grid of triangles, moved rigidly to many places in each
+    /// coordinate plane as a falling body is (coordinates that are not
+    /// round), each particle's coordinate across the plane then moved by
+    /// up to one ulp either way as a step's rounding leaves it: a
+    /// conforming flat triangulation has no two triangles sharing no
+    /// particle that meet, so none may be reported, by the count or by a
+    /// test of every pair.
+    #[test]
+    fn a_flat_grid_moved_anywhere_has_no_intersecting_pairs() {
+        let side = 8;
+        let mut triangles = Vec::new();
+        for r in 0..side - 1 {
+            for c in 0..side - 1 {
+                let p = r * side + c;
+                triangles.push([p, p + 1, p + side]);
+                triangles.push([p + 1, p + side + 1, p + side]);
+            }
+        }
+        let mut mesh = CollisionMesh::new();
+        mesh.add_surface(&triangles, true);
+        // xorshift64: -1, 0 or 1 ulp.
+        let mut seed = 0x9E37_79B9_7F4A_7C15_u64;
+        let mut ulps = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % 3) as i64 - 1
+        };
+        for axis in 0..3 {
+            for k in 0..50 {
+                let t = 0.013 * f64::from(k);
+                let offset = Vec3::new(-0.47 + 0.31 * t, 1.5 - 4.905 * t * t, -0.15 + 0.7 * t);
+                let x: Vec<Vec3> = (0..side * side)
+                    .map(|p| {
+                        let (u, v) = (0.05 * (p % side) as f64, 0.05 * (p / side) as f64);
+                        let mut point = Vec3::zeros();
+                        point[(axis + 1) % 3] = u;
+                        point[(axis + 2) % 3] = v;
+                        point += offset;
+                        let across = point[axis].to_bits().cast_signed() + ulps();
+                        point[axis] = f64::from_bits(across.cast_unsigned());
+                        point
+                    })
+                    .collect();
+                assert_eq!(
+                    intersecting_triangle_pairs(&mesh, &x),
+                    0,
+                    "axis {axis}, t {t}"
+                );
+                for (s, a) in triangles.iter().enumerate() {
+                    for b in &triangles[s + 1..] {
+                        if a.iter().any(|p| b.contains(p)) {
+                            continue;
+                        }
+                        assert!(
+                            !triangles_intersect(a.map(|p| x[p]), b.map(|p| x[p])),
+                            "axis {axis}, t {t}: {a:?} {b:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn counts_by_surface_match_every_pair_tested_directly() {
+        let (mesh, x) = crumpled();
+        let triangles = mesh.triangles();
+        let mut expected: Vec<((usize, usize), usize)> = Vec::new();
+        for s in 0..triangles.len() {
+            for t in s + 1..triangles.len() {
+                let (a, b) = (triangles[s], triangles[t]);
+                if a.iter().any(|p| b.contains(p)) {
+                    continue;
+                }
+                if triangles_intersect(a.map(|p| x[p]), b.map(|p| x[p])) {
+                    let (g, h) = (mesh.triangle_group(s), mesh.triangle_group(t));
+                    let key = (g.min(h), g.max(h));
+                    match expected.iter_mut().find(|(k, _)| *k == key) {
+                        Some((_, count)) => *count += 1,
+                        None => expected.push((key, 1)),
+                    }
+                }
+            }
+        }
+        expected.sort_unstable();
+        // Both surfaces pass through themselves and through each other.
+        assert_eq!(expected.len(), 3, "{expected:?}");
+        assert_eq!(intersecting_triangle_pairs_by_surface(&mesh, &x), expected);
+        let total: usize = expected.iter().map(|(_, count)| count).sum();
+        assert_eq!(intersecting_triangle_pairs(&mesh, &x), total);
+    }
 }
