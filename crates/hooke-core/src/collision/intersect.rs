@@ -47,16 +47,18 @@ fn orient(a: Vec3, b: Vec3, c: Vec3, d: Vec3) -> f64 {
 
 /// Whether the closed segment `pq` meets the closed triangle `abc`.
 ///
-/// A segment whose box does not touch the triangle's misses it. With
-/// `s_p = orient(a, b, c, p)` and `s_q` likewise (0 where rounding could
-/// have given the sign, see [`orient`]): ends strictly on one side of the
-/// plane miss it; an end on the plane meets the triangle where it lies in
-/// it (a planar test), and a segment in the plane where it meets it in the
-/// plane. Otherwise the segment crosses the plane at one point, which is in
-/// the triangle when `orient(p, q, a, b)`, `orient(p, q, b, c)` and
-/// `orient(p, q, c, a)` do not have opposite signs (the line passes on the
-/// same side of all three sides, or on one of them; all three 0 only for a
-/// degenerate triangle, tested in its plane).
+/// A segment whose box does not touch the triangle's misses it. A triangle
+/// whose corners lie on one line has no plane: the segment meets it only
+/// if the two lie in one plane, and then where they meet in it. Otherwise,
+/// with `s_p = orient(a, b, c, p)` and `s_q` likewise (0 where rounding
+/// could have given the sign, see [`orient`]): ends strictly on one side
+/// of the plane miss it; an end on the plane meets the triangle where it
+/// lies in it (a planar test), and a segment in the plane where it meets
+/// it in the plane. Otherwise the segment crosses the plane at one point,
+/// which is in the triangle when `orient(p, q, a, b)`, `orient(p, q, b, c)`
+/// and `orient(p, q, c, a)` do not have opposite signs (the line passes on
+/// the same side of all three sides, or on one of them; all three 0 only
+/// where rounding hides the triangle's area, tested in its plane).
 ///
 /// Nearly coplanar points are why the zeros are certified and the ends on
 /// the plane tested in it: an end a few ulps off the plane of a flat
@@ -70,6 +72,12 @@ fn segment_meets_triangle(p: Vec3, q: Vec3, [a, b, c]: [Vec3; 3]) -> bool {
         return false;
     }
     let triangle = [a, b, c];
+    if collinear(a, b, c) {
+        // A triangle on a line has no plane: the segment meets it only in
+        // a plane with that line (skew lines never meet).
+        let [e0, e1] = longest_side(triangle);
+        return orient(p, q, e0, e1) == 0.0 && coplanar_segment_triangle(p, q, triangle);
+    }
     let (sp, sq) = (orient(a, b, c, p), orient(a, b, c, q));
     match (sp == 0.0, sq == 0.0) {
         _ if (sp > 0.0 && sq > 0.0) || (sp < 0.0 && sq < 0.0) => false,
@@ -84,6 +92,22 @@ fn segment_meets_triangle(p: Vec3, q: Vec3, [a, b, c]: [Vec3; 3]) -> bool {
             (u >= 0.0 && v >= 0.0 && w >= 0.0) || (u <= 0.0 && v <= 0.0 && w <= 0.0)
         }
     }
+}
+
+/// Whether `a`, `b` and `c` lie on one line as far as rounding tells: every
+/// component of `(b − a) × (c − a)` within the rounding bound of
+/// [`orient2`], whose coordinate-plane determinants they are.
+fn collinear(a: Vec3, b: Vec3, c: Vec3) -> bool {
+    let (u, v) = (b - a, c - a);
+    u.cross(&v).amax() <= 4.0 * f64::EPSILON * u.lp_norm(1) * v.lp_norm(1)
+}
+
+/// The ends of the triangle's longest side.
+fn longest_side([a, b, c]: [Vec3; 3]) -> [Vec3; 2] {
+    [[a, b], [b, c], [c, a]]
+        .into_iter()
+        .max_by(|[p, q], [r, s]| (q - p).norm_squared().total_cmp(&(s - r).norm_squared()))
+        .expect("three sides")
 }
 
 /// Whether the segment `pq` meets the triangle `abc`, all five points in
@@ -394,6 +418,26 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A triangle collapsed onto a line (as a crushed body's can be) and a
+    /// triangle one of whose sides passes 0.1 above that line, their boxes
+    /// overlapping and their projections crossing: they do not meet (the
+    /// line crosses the other triangle's plane outside it); moved down by
+    /// 0.1, that side runs through the line and they do.
+    #[test]
+    fn a_degenerate_triangle_meets_only_what_its_line_meets() {
+        let line = [Vec3::zeros(), Vec3::x(), Vec3::new(0.5, 0.0, 0.0)];
+        let passing = [
+            Vec3::new(0.3, -1.0, 0.5),
+            Vec3::new(0.7, 1.0, -0.3),
+            Vec3::new(2.0, 0.0, 2.0),
+        ];
+        assert!(!triangles_intersect(line, passing));
+        assert!(!triangles_intersect(passing, line));
+        let through = passing.map(|p| p - Vec3::new(0.0, 0.0, 0.1));
+        assert!(triangles_intersect(line, through));
+        assert!(triangles_intersect(through, line));
     }
 
     #[test]
