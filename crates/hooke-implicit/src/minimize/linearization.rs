@@ -25,3 +25,29 @@ pub struct Linearization<'a> {
     /// linearisation of a step) or keep those of the previous call.
     pub freeze_directions: bool,
 }
+
+#[cfg(test)]
+impl<'a> Linearization<'a> {
+    /// Baraff & Witkin's linearised step of `h` from `state` without a
+    /// predictor, for tests: the system at the state's positions and
+    /// velocities, the displacement `h v` and no inertia term, compressed
+    /// springs clamped; `work` holds the displacement and the zero inertia.
+    pub(crate) fn step_from(
+        state: &'a hooke_core::State,
+        h: f64,
+        work: &'a mut [Vec<Vec3>; 2],
+    ) -> Self {
+        let [u, inertia] = work;
+        *u = state.velocities().iter().map(|v| h * v).collect();
+        *inertia = vec![Vec3::zeros(); u.len()];
+        Self {
+            positions: state.positions(),
+            velocities: state.velocities(),
+            displacement: Some(u),
+            inertia,
+            beta_h: h,
+            compressed: CompressedSprings::Clamped,
+            freeze_directions: true,
+        }
+    }
+}

@@ -63,7 +63,6 @@ fn blocks_outside_the_pattern_leave_the_factored_matrix_above_the_whole_one() {
 /// particles moving, with the filters that fix the sheet's pinned
 /// particles, and a right-hand side.
 fn sheet_system() -> (BlockMatrix, Vec<Filter>, Vec<Vec3>) {
-    use hooke_core::CompressedSprings;
     use hooke_core::reference::Sheet;
 
     use crate::minimize::assembly::Assembler;
@@ -78,17 +77,8 @@ fn sheet_system() -> (BlockMatrix, Vec<Filter>, Vec<Vec3>) {
         *v = Vec3::new((i as f64).sin(), (3.0 * i as f64).cos(), 0.0);
     }
     let n = system.particle_count();
-    let h = 0.01;
-    let u: Vec<Vec3> = state.velocities().iter().map(|v| h * v).collect();
-    let lin = Linearization {
-        positions: state.positions(),
-        velocities: state.velocities(),
-        displacement: Some(&u),
-        inertia: &vec![Vec3::zeros(); n],
-        beta_h: h,
-        compressed: CompressedSprings::Clamped,
-        freeze_directions: true,
-    };
+    let mut work = Default::default();
+    let lin = Linearization::step_from(&state, 0.01, &mut work);
     let mut a = BlockMatrix::zeros(Pattern::new(&system).unwrap());
     let mut b = vec![Vec3::zeros(); n];
     Assembler::default()

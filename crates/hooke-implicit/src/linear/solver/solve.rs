@@ -235,7 +235,6 @@ impl Solve<'_> {
 
 #[cfg(test)]
 mod tests {
-    use hooke_core::CompressedSprings;
     use hooke_core::reference::Sheet;
 
     use super::*;
@@ -268,17 +267,8 @@ mod tests {
         )
         .unwrap();
         topology.fallback = true;
-        let h = 0.01;
-        let u: Vec<Vec3> = state.velocities().iter().map(|v| h * v).collect();
-        let lin = Linearization {
-            positions: state.positions(),
-            velocities: state.velocities(),
-            displacement: Some(&u),
-            inertia: &vec![Vec3::zeros(); n],
-            beta_h: h,
-            compressed: CompressedSprings::Clamped,
-            freeze_directions: true,
-        };
+        let mut work = Default::default();
+        let lin = Linearization::step_from(&state, 0.01, &mut work);
         let solve = Solve {
             system: &system,
             strict: true,
