@@ -16,7 +16,7 @@
 use std::io::Write;
 use std::time::Instant;
 
-use hooke::implicit::{FastMassSpring, Minimizer};
+use hooke::implicit::{FastMassSpring, LinearSolver, Minimizer, PcgSettings};
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Mass};
 
@@ -108,6 +108,38 @@ fn variants() -> Vec<Variant> {
                     Implicit::backward_euler()
                         .with_minimizer(Minimizer::quasi_newton())
                         .with_newton(1000, tol)
+                        .unwrap(),
+                )
+            }),
+        ));
+    }
+    // H₀⁻¹ by its factor or by one multigrid V-cycle, whichever `auto`
+    // would take at this size.
+    for (name, solver) in [
+        ("factored", LinearSolver::Cholesky),
+        ("multigrid", LinearSolver::Amg(PcgSettings::default())),
+    ] {
+        all.push((
+            format!("quasi-Newton, 10 iterations, H₀ {name}"),
+            Box::new(move || {
+                Box::new(
+                    Implicit::backward_euler()
+                        .with_minimizer(Minimizer::quasi_newton())
+                        .with_solver(solver)
+                        .with_newton(10, 1e-12)
+                        .unwrap()
+                        .with_max_halvings(0),
+                )
+            }),
+        ));
+        all.push((
+            format!("quasi-Newton, 1e-2, H₀ {name}"),
+            Box::new(move || {
+                Box::new(
+                    Implicit::backward_euler()
+                        .with_minimizer(Minimizer::quasi_newton())
+                        .with_solver(solver)
+                        .with_newton(1000, 1e-2)
                         .unwrap(),
                 )
             }),

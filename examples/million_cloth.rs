@@ -7,17 +7,19 @@
 //! process's peak resident memory (`VmHWM` of `/proc/self/status`) per
 //! particle.
 //!
-//! `cargo run --release --example million_cloth -- [N] [STEPS] [STEP] [TOLERANCE] [SELF]`
+//! `cargo run --release --example million_cloth -- [N] [STEPS] [STEP] [TOLERANCE] [SELF] [SOLVER]`
 //!
 //! `N` = 1000 (a million particles) and `STEPS` = 2 by default; `STEP` is
 //! `newton` (the default) or `quasi-newton`, `TOLERANCE` the relative
 //! Newton tolerance (the integrator's default if not given), `SELF` `on`
-//! (the default) or `off` for the cloth's self-collision.
+//! (the default) or `off` for the cloth's self-collision, `SOLVER` the
+//! linear solver's name (`auto` by default; for the quasi-Newton step,
+//! `cholesky` factors `H₀` and `amg` applies it by multigrid).
 #![allow(clippy::print_stdout)] // printing the measurements is this program's job
 
 use std::time::Instant;
 
-use hooke::implicit::{Implicit, Minimizer};
+use hooke::implicit::{Implicit, LinearSolver, Minimizer};
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Mass, Springs};
 
@@ -38,6 +40,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some("off") => false,
         Some(other) => return Err(format!("SELF is on or off, not {other:?}").into()),
     };
+    let solver = match args.next() {
+        None => LinearSolver::Auto,
+        Some(name) => {
+            LinearSolver::from_name(&name).ok_or_else(|| format!("unknown solver {name:?}"))?
+        }
+    };
     let system = Cloth::grid(side, side)
         .mass(Mass::Total(1.0))
         .stretch(Springs::per_spring(5000.0).damping(0.05))
@@ -51,6 +59,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut state = system.initial_state();
     let mut integrator = Implicit::backward_euler()
         .with_minimizer(minimizer)
+        .with_solver(solver)
         .with_newton(Implicit::NEWTON_ITERATIONS, tolerance)?;
     for step in 0..steps {
         let started = Instant::now();

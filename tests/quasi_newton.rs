@@ -49,6 +49,7 @@ fn run(
         total.unconverged_steps += report.unconverged_steps;
         total.energy_corrections += report.energy_corrections;
         total.accepted_steps += report.accepted_steps;
+        total.linear_solver = report.linear_solver;
     }
     (state, total)
 }
@@ -58,12 +59,31 @@ fn run(
 /// scale, every step converges, and L-BFGS needs more than one iteration
 /// a step (the initial Hessian alone is not the answer).
 fn agree(scheme: Scheme, system: &System, start: &State, h: f64, steps: usize, bound: f64) {
+    agree_with(
+        scheme,
+        LinearSolver::Auto,
+        (system, start),
+        (h, steps),
+        bound,
+    );
+}
+
+/// [`agree`], L-BFGS applying `H₀⁻¹` as `solver` says; returns L-BFGS's
+/// summed report.
+fn agree_with(
+    scheme: Scheme,
+    solver: LinearSolver,
+    (system, start): (&System, &State),
+    (h, steps): (f64, usize),
+    bound: f64,
+) -> StepReport {
     let newton = Implicit::new(scheme)
         .with_solver(LinearSolver::Cholesky)
         .with_newton(100, TIGHT)
         .unwrap();
     let quasi = Implicit::new(scheme)
         .with_minimizer(Minimizer::quasi_newton())
+        .with_solver(solver)
         .with_newton(5000, TIGHT)
         .unwrap();
     let (a, newton_report) = run(newton, system, start, h, steps);
@@ -82,26 +102,34 @@ fn agree(scheme: Scheme, system: &System, start: &State, h: f64, steps: usize, b
         "{scheme:?}: velocities differ by {difference:e} of their norm \
          (Newton {newton_report:?}, quasi-Newton {quasi_report:?})"
     );
+    quasi_report
 }
 
-/// A 10×10 sheet pinned at two corners, stretched by 3 % and moving.
-fn moving_sheet() -> (System, State) {
+/// A `side`×`side` sheet of 500 N/m springs pinned at two corners, at
+/// rest length, its free particles set moving.
+fn sheet_in_motion(side: usize) -> (System, State) {
     let system = Sheet {
         stiffness: 500.0,
-        ..Sheet::new(10)
+        ..Sheet::new(side)
     }
     .system()
     .unwrap();
     let mut start = system.initial_state();
+    for (k, v) in start.velocities_mut().iter_mut().enumerate() {
+        if !system.is_pinned(k) {
+            *v = Vec3::new(0.2 * (k as f64).cos(), -0.3, 0.1);
+        }
+    }
+    (system, start)
+}
+
+/// A 10×10 sheet pinned at two corners, stretched by 3 % and moving.
+fn moving_sheet() -> (System, State) {
+    let (system, mut start) = sheet_in_motion(10);
     for (k, x) in start.positions_mut().iter_mut().enumerate() {
         if !system.is_pinned(k) {
             *x *= 1.03;
             x.y = 0.01 * (0.9 * k as f64).sin();
-        }
-    }
-    for (k, v) in start.velocities_mut().iter_mut().enumerate() {
-        if !system.is_pinned(k) {
-            *v = Vec3::new(0.2 * (k as f64).cos(), -0.3, 0.1);
         }
     }
     (system, start)
@@ -112,6 +140,23 @@ fn cloth_with_pins_under_backward_euler_and_bdf2() {
     let (system, start) = moving_sheet();
     agree(Scheme::BackwardEuler, &system, &start, 1.0 / 60.0, 3, 1e-5);
     agree(Scheme::Bdf2, &system, &start, 1.0 / 60.0, 3, 1e-5);
+}
+
+/// With `solver = "amg"` one multigrid V-cycle stands for `H₀⁻¹` (a
+/// 50×50 sheet has a level above the factorized coarsest): L-BFGS still
+/// reaches Newton's step, and the report names the multigrid.
+#[test]
+fn a_multigrid_initial_hessian_reaches_the_same_step() {
+    let (system, start) = sheet_in_motion(50);
+    let amg = LinearSolver::from_name("amg").unwrap();
+    let report = agree_with(
+        Scheme::BackwardEuler,
+        amg,
+        (&system, &start),
+        (1.0 / 60.0, 2),
+        1e-5,
+    );
+    assert_eq!(report.linear_solver, "amg", "{report:?}");
 }
 
 #[test]

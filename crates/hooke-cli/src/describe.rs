@@ -234,6 +234,7 @@ fn integrator_parameters(spec: &IntegratorSpec, particles: usize) -> String {
                 None => format!("rejected steps halved at most {max_halvings} times"),
             };
             let strict = if strict { ", strict" } else { "" };
+            let solver_setting = solver;
             let solver = match solver {
                 LinearSolver::Cholesky => "sparse Cholesky".to_owned(),
                 LinearSolver::Auto if particles < AutoSettings::DEFAULT.trial_particles => format!(
@@ -268,10 +269,23 @@ fn integrator_parameters(spec: &IntegratorSpec, particles: usize) -> String {
                     ", {solver}, converged: at most {newton_iterations} Newton iterations to a relative {newton_tolerance:e}, {substeps}{strict}"
                 ),
                 Minimizer::QuasiNewton { history } => format!(
-                    ", quasi-Newton (L-BFGS, history {history}, prefactored spring Laplacian): at most {newton_iterations} iterations to a relative {newton_tolerance:e}, {substeps}{strict}"
+                    ", quasi-Newton (L-BFGS, history {history}, initial Hessian the spring Laplacian, {}): at most {newton_iterations} iterations to a relative {newton_tolerance:e}, {substeps}{strict}",
+                    initial_hessian(solver_setting)
                 ),
             }
         }
+    }
+}
+
+/// How the quasi-Newton step applies its initial Hessian's inverse under
+/// the `solver` setting.
+fn initial_hessian(solver: LinearSolver) -> &'static str {
+    match solver {
+        LinearSolver::Amg(_) => "applied by one multigrid V-cycle",
+        LinearSolver::Auto => {
+            "factored, or applied by one multigrid V-cycle where the factor is large"
+        }
+        _ => "factored",
     }
 }
 

@@ -7,7 +7,7 @@ use hooke_core::{
 };
 
 use crate::linear::solver::LinearSolver;
-use crate::minimize::laplacian::Laplacian;
+use crate::minimize::laplacian::{Inverse, Laplacian};
 
 /// Backward Euler for springs as Liu et al. (2013) solve it.
 ///
@@ -145,6 +145,7 @@ impl Integrator for FastMassSpring {
                     system,
                     weights,
                     (dt.to_bits(), &[]),
+                    Inverse::Factor,
                     state.time(),
                 )?);
             }

@@ -6,7 +6,6 @@
 
 use hooke_core::{CompressedSprings, StepError, StepReport, System, Vec3};
 
-use crate::linear::solver::LinearSolver;
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::Topology;
 use crate::linear::vector::{dot, for_each_row, for_each_row2};
@@ -249,8 +248,9 @@ impl Newton<'_> {
             a.clear_extra();
         }
         self.report.linear_solves += 1;
-        self.report.linear_solver = LinearSolver::Cholesky.name();
-        Ok(quasi.direction(system, self.b, v, delta))
+        let slope = quasi.direction(system, self.b, v, delta);
+        self.report.linear_solver = quasi.solver_name();
+        Ok(slope)
     }
 }
 

@@ -14,7 +14,10 @@
 //! spring's stiffness block `kₛ[d dᵀ + (1 − L/l)(I − d dᵀ)]` and damping
 //! block `cₛ d dᵀ` replaced by their upper bounds `kₛ I` and `cₛ I` — the
 //! matrix of fast mass-spring, so it depends on the topology, the moduli
-//! and `βh` only and is factorized once per step size. An iteration costs
+//! and `βh` only and is factorized once per step size. Where its factor
+//! would be large, one V-cycle of smoothed-aggregation multigrid on it
+//! (`linear::amg::scalar`) stands for `H₀⁻¹` instead: a fixed symmetric
+//! positive-definite operator, as the two-loop recursion needs. An iteration costs
 //! one gradient of `Φ`, the two-loop recursion over the last `m` pairs
 //! `sₖ = vₖ₊₁ − vₖ`, `yₖ = ∇Φ(vₖ₊₁) − ∇Φ(vₖ)` (Nocedal & Wright,
 //! *Numerical Optimization*, Algorithm 7.4) and three pairs of triangular
@@ -40,13 +43,15 @@ use hooke_core::{StepError, System, Vec3};
 
 use crate::linear::block::SymBlock;
 use crate::linear::vector::{dot, for_each_row};
-use crate::minimize::laplacian::Laplacian;
+use crate::minimize::laplacian::{Inverse, Laplacian};
 
 /// The quasi-Newton state of an integrator: `H₀`'s factor and the curvature
 /// pairs of the current (sub)step.
 #[derive(Debug, Default)]
 pub(crate) struct QuasiNewton {
     laplacian: Option<Laplacian>,
+    /// How `H₀⁻¹` is applied, for a new pattern.
+    inverse: Option<Inverse>,
     /// The pairs `(s, y, 1/sᵀy)`, oldest first from `first`, a ring of
     /// `history` entries of which `len` hold pairs; the buffers are
     /// allocated as pairs arrive, so a long history costs only what the
@@ -76,8 +81,8 @@ pub(crate) struct QuasiNewton {
 
 impl QuasiNewton {
     /// Starts a (sub)step of `system` with `βh = beta_h` keeping `history`
-    /// pairs: factorizes `H₀` unless it is factorized for this `βh`, and
-    /// empties the history.
+    /// pairs, `H₀⁻¹` applied as `inverse` says: factorizes `H₀` unless it is
+    /// factorized for this `βh`, and empties the history.
     ///
     /// # Errors
     /// [`StepError::SystemTooLarge`] or [`StepError::NotPositiveDefinite`]
@@ -89,9 +94,13 @@ impl QuasiNewton {
         &mut self,
         system: &System,
         (beta_h, contact): (f64, bool),
-        history: usize,
+        (history, inverse): (usize, Inverse),
         time: f64,
     ) -> Result<(), StepError> {
+        if self.inverse != Some(inverse) {
+            self.laplacian = None;
+            self.inverse = Some(inverse);
+        }
         self.beta_h = beta_h;
         self.pending = contact;
         let factorized = self
@@ -118,6 +127,14 @@ impl QuasiNewton {
         self.len = 0;
         self.has_last = false;
         Ok(())
+    }
+
+    /// The name of the linear solver applying `H₀⁻¹` (see
+    /// [`Laplacian::solver_name`]).
+    pub(crate) fn solver_name(&self) -> &'static str {
+        self.laplacian
+            .as_ref()
+            .map_or(crate::LinearSolver::Cholesky.name(), Laplacian::solver_name)
     }
 
     /// Whether `H₀` waits for the contact terms' stand-in
@@ -158,7 +175,8 @@ impl QuasiNewton {
         match &mut self.laplacian {
             Some(l) if l.is_for(system) => l.refactor(system, weights(beta_h), key, time),
             slot => {
-                *slot = Some(Laplacian::new(system, weights(beta_h), key, time)?);
+                let inverse = self.inverse.unwrap_or(Inverse::Auto);
+                *slot = Some(Laplacian::new(system, weights(beta_h), key, inverse, time)?);
                 Ok(())
             }
         }

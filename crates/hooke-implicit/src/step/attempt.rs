@@ -127,7 +127,9 @@ impl Implicit {
         let quasi = match self.settings.minimizer {
             Minimizer::QuasiNewton { history } => {
                 let contact = Contact::present(system);
-                self.quasi.begin(system, (beta_h, contact), history, time)?;
+                let inverse = self.settings.solver.initial_hessian_inverse();
+                self.quasi
+                    .begin(system, (beta_h, contact), (history, inverse), time)?;
                 Some(&mut self.quasi)
             }
             _ => None,

@@ -28,11 +28,18 @@ pub enum Minimizer {
     /// Hessian where it is positive definite (the default).
     #[default]
     Newton,
-    /// L-BFGS with the last `history` curvature pairs and the constant,
-    /// prefactored initial Hessian `H₀ = M + βh (γI + C₀) + β²h² L` (the
-    /// springs' stiffness and damping Laplacians; Liu, Bouaziz & Kavan
-    /// 2017): an iteration costs one gradient and three pairs of triangular
-    /// solves, no matrix is assembled. The same line search, stopping rule,
+    /// L-BFGS with the last `history` curvature pairs and the constant
+    /// initial Hessian `H₀ = M + βh (γI + C₀) + β²h² L` (the springs'
+    /// stiffness and damping Laplacians; Liu, Bouaziz & Kavan 2017),
+    /// prefactored: an iteration costs one gradient and three pairs of
+    /// triangular solves, no matrix is assembled. The integrator's
+    /// [`LinearSolver`](crate::LinearSolver) says how `H₀⁻¹` is applied:
+    /// [`Amg`](crate::LinearSolver::Amg) by one V-cycle of
+    /// smoothed-aggregation multigrid on `H₀` instead of a factor (memory
+    /// and time linear in the particles), [`Auto`](crate::LinearSolver::Auto)
+    /// by the factor unless it holds more than 96 entries per particle
+    /// (the bench cloth from about 200 × 200 particles), every other by
+    /// the factor. The same line search, stopping rule,
     /// energy test and substeps as Newton's method; it converges linearly
     /// where Newton converges quadratically, so it wins at loose
     /// tolerances and on large meshes. It loses where contacts come and

@@ -82,6 +82,11 @@ impl ScalarCholesky {
         })
     }
 
+    /// The factor's entries.
+    pub(crate) fn entries(&self) -> usize {
+        self.factor.len()
+    }
+
     /// Bytes held by the matrix and its factor.
     pub(crate) fn bytes(&self) -> usize {
         4 * (self.col_ptr.len() + self.row_idx.len())

@@ -273,13 +273,29 @@ impl Coarsest {
 }
 
 /// The smoother of `degree` on `[1.1 λ̂/30, 1.1 λ̂]`.
-fn chebyshev(lambda: f64, degree: usize) -> Chebyshev {
+pub(super) fn chebyshev(lambda: f64, degree: usize) -> Chebyshev {
     let high = EIGEN_SAFETY * lambda.max(f64::MIN_POSITIVE);
     Chebyshev {
         low: high / CHEBYSHEV_RATIO,
         high,
         degree,
     }
+}
+
+/// `λ̂`, the power method's estimate of `λ_max(D⁻¹A)` from a pseudo-random
+/// start (`A` applied by `apply`, `D⁻¹` by `inverse`, `n` unknowns).
+pub(super) fn estimate_largest(
+    apply: &mut dyn FnMut(&[f64], &mut [f64]),
+    inverse: &dyn Fn(&[f64], &mut [f64]),
+    n: usize,
+) -> f64 {
+    largest_eigenvalue(apply, inverse, &mut Vec::new(), n, EIGEN_ITERATIONS)
+}
+
+/// The prolongator smoothing weight `ω = 4/(3 · 1.1 λ̂)` for the estimate
+/// `λ̂` of `λ_max(D⁻¹A)`.
+pub(super) fn smoothing_weight_for(lambda: f64) -> f64 {
+    4.0 / (3.0 * EIGEN_SAFETY * lambda.max(f64::MIN_POSITIVE))
 }
 
 /// `ω = 4/(3 λ_max(D⁻¹A))` for `D = diag(A)`.
@@ -289,14 +305,7 @@ pub(super) fn smoothing_weight(apply: &mut dyn FnMut(&[f64], &mut [f64]), diagon
             .zip(r.iter().zip(diagonal))
             .for_each(|(zi, (ri, di))| *zi = ri / di);
     };
-    let lambda = largest_eigenvalue(
-        apply,
-        &inverse,
-        &mut Vec::new(),
-        diagonal.len(),
-        EIGEN_ITERATIONS,
-    );
-    4.0 / (3.0 * EIGEN_SAFETY * lambda.max(f64::MIN_POSITIVE))
+    smoothing_weight_for(estimate_largest(apply, &inverse, diagonal.len()))
 }
 
 /// The node graph of a coarse level's operator: the Frobenius norms of its

@@ -62,6 +62,12 @@
 //! more than twice the iterations of the first solve after the last build;
 //! [`AmgRenewal`](crate::AmgRenewal) has the lazier alternative and the
 //! measurements behind the choice.
+//!
+//! # Scalar matrices
+//!
+//! The `scalar` module builds the same hierarchy on a scalar matrix, the
+//! constant vector its near-null space: the quasi-Newton step's initial
+//! Hessian on meshes whose factor would be large.
 
 mod aggregation;
 mod bsr;
@@ -71,6 +77,7 @@ pub(crate) mod fine;
 mod hierarchy;
 mod level;
 mod prolongation;
+pub(crate) mod scalar;
 mod settings;
 mod smoother;
 
