@@ -70,6 +70,47 @@ pub struct BlockMatrix {
     pub(crate) extra_at_slots: Vec<Mat3>,
 }
 
+/// Where a term's Hessian blocks go as it adds itself to a Newton system:
+/// the system's [`BlockMatrix`], or — for the quasi-Newton step, which
+/// assembles no matrix — the diagonal blocks alone ([`DiagonalBlocks`]),
+/// or nowhere (`()`).
+pub(crate) trait HessianBlocks {
+    /// Adds the symmetric block `B` to particle `i`'s diagonal.
+    fn add_row(&mut self, i: usize, block: SymBlock);
+    /// Adds `B` at `(i, j)` and `Bᵀ` at `(j, i)`, `i ≠ j`.
+    fn add_pair(&mut self, i: usize, j: usize, block: Mat3);
+}
+
+impl HessianBlocks for BlockMatrix {
+    fn add_row(&mut self, i: usize, block: SymBlock) {
+        self.add_extra_row(i, block);
+    }
+
+    fn add_pair(&mut self, i: usize, j: usize, block: Mat3) {
+        self.add_extra_pair(i, j, block);
+    }
+}
+
+/// The diagonal blocks `(particle, block)` of the terms added, in order;
+/// the blocks between particles are dropped.
+#[derive(Debug, Default)]
+pub(crate) struct DiagonalBlocks(pub(crate) Vec<(u32, SymBlock)>);
+
+impl HessianBlocks for DiagonalBlocks {
+    fn add_row(&mut self, i: usize, block: SymBlock) {
+        self.0.push((i as u32, block));
+    }
+
+    fn add_pair(&mut self, _: usize, _: usize, _: Mat3) {}
+}
+
+/// No blocks: the gradient alone.
+impl HessianBlocks for () {
+    fn add_row(&mut self, _: usize, _: SymBlock) {}
+
+    fn add_pair(&mut self, _: usize, _: usize, _: Mat3) {}
+}
+
 impl BlockMatrix {
     /// A zero matrix with the given pattern.
     #[must_use]
@@ -81,6 +122,21 @@ impl BlockMatrix {
             diagonal: vec![SymBlock::default(); rows],
             mass: vec![0.0; rows],
             springs: vec![SymBlock::default(); slots],
+            extra_rows: Vec::new(),
+            extra_pairs: Vec::new(),
+            extra_at_slots: Vec::new(),
+        }
+    }
+
+    /// The pattern alone, without values, for a step that assembles no
+    /// matrix: the quasi-Newton step reads the springs' slots only, and on
+    /// a million particles the values would cost 344 bytes a particle.
+    pub(crate) fn unassembled(pattern: Pattern) -> Self {
+        Self {
+            pattern,
+            diagonal: Vec::new(),
+            mass: Vec::new(),
+            springs: Vec::new(),
             extra_rows: Vec::new(),
             extra_pairs: Vec::new(),
             extra_at_slots: Vec::new(),
@@ -136,7 +192,7 @@ impl BlockMatrix {
     /// Number of block rows (particles).
     #[must_use]
     pub fn rows(&self) -> usize {
-        self.diagonal.len()
+        self.pattern.rows()
     }
 
     /// The diagonal block of particle `i`.

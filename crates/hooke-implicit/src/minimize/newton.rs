@@ -6,6 +6,7 @@
 
 use hooke_core::{CompressedSprings, StepError, StepReport, System, Vec3};
 
+use crate::linear::matrix::DiagonalBlocks;
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::Topology;
 use crate::linear::vector::{dot, for_each_row, for_each_row2};
@@ -237,15 +238,16 @@ impl Newton<'_> {
         }
         check_finite(system, self.b, self.solve.time)?;
         if let Some(contact) = self.contact.as_deref_mut() {
-            // The contact terms' Hessian blocks land in the matrix's extra
-            // blocks: their diagonal ones give the stand-in on H₀ at the
-            // step's first iterate, and are dropped.
-            let a = self.topology.matrix_mut();
-            contact.add(system, self.x, v, beta_h, self.b, a);
+            // The contact terms' gradients join the residual. At the step's
+            // first iterate their diagonal Hessian blocks give the stand-in
+            // on H₀; later iterations keep no blocks.
             if quasi.pending() {
-                quasi.add_stand_in(system, &a.extra_rows, self.solve.time)?;
+                let mut diagonal = DiagonalBlocks::default();
+                contact.add(system, self.x, v, beta_h, self.b, &mut diagonal);
+                quasi.add_stand_in(system, &diagonal.0, self.solve.time)?;
+            } else {
+                contact.add(system, self.x, v, beta_h, self.b, &mut ());
             }
-            a.clear_extra();
         }
         self.report.linear_solves += 1;
         let slope = quasi.direction(system, self.b, v, delta);

@@ -189,14 +189,13 @@ impl Implicit {
         self.settings.scheme
     }
 
-    /// The linear solver whose topology a step uses: the quasi-Newton step
-    /// solves with its own factor of `H₀` and needs the pattern and the
-    /// conditioning bounds only, so it asks for the one that builds no
-    /// factor or hierarchy.
-    pub(crate) fn solver_for_topology(&self) -> LinearSolver {
+    /// The linear solver whose topology a step uses; none for the
+    /// quasi-Newton step, which solves with its own `H₀` and reads the
+    /// springs' pattern only (no matrix, factor or hierarchy).
+    pub(crate) fn solver_for_topology(&self) -> Option<LinearSolver> {
         match self.settings.minimizer {
-            Minimizer::QuasiNewton { .. } => LinearSolver::Pcg(crate::PcgSettings::default()),
-            _ => self.settings.solver,
+            Minimizer::QuasiNewton { .. } => None,
+            _ => Some(self.settings.solver),
         }
     }
 }

@@ -261,7 +261,7 @@ mod tests {
         let mut cached = None;
         let topology = topology(
             &mut cached,
-            LinearSolver::Pcg(capped),
+            Some(LinearSolver::Pcg(capped)),
             AmgRenewal::default(),
             &system,
         )

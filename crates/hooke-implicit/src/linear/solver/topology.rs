@@ -6,6 +6,7 @@ use hooke_core::{StepError, System};
 use super::LinearSolver;
 use super::auto_settings::AutoSettings;
 use super::renewal::{AmgRenewal, AmgState};
+use crate::PcgSettings;
 use crate::linear::cg::BlockJacobi;
 use crate::linear::cholesky::SparseCholesky;
 use crate::linear::filter::{Filter, pin_filters};
@@ -119,10 +120,12 @@ impl Topology {
 /// The topology-dependent parts for `system`, rebuilt when the system
 /// changes or none were built yet (the step's history is keyed on the system
 /// too, so it restarts then). [`LinearSolver::Auto`] is resolved here by
-/// the system's size, or left to the trial.
+/// the system's size, or left to the trial. Without `solver` (a step that
+/// assembles no matrix), the matrix is its pattern alone
+/// ([`BlockMatrix::unassembled`]).
 pub(crate) fn topology<'a>(
     cached: &'a mut Option<Topology>,
-    solver: LinearSolver,
+    solver: Option<LinearSolver>,
     renewal: AmgRenewal,
     system: &System,
 ) -> Result<&'a mut Topology, StepError> {
@@ -130,7 +133,14 @@ pub(crate) fn topology<'a>(
         *cached = None;
     }
     if cached.is_none() {
-        let matrix = BlockMatrix::zeros(Pattern::new(system)?);
+        let pattern = Pattern::new(system)?;
+        let (matrix, solver) = match solver {
+            Some(solver) => (BlockMatrix::zeros(pattern), solver),
+            None => (
+                BlockMatrix::unassembled(pattern),
+                LinearSolver::Pcg(PcgSettings::default()),
+            ),
+        };
         let solver = match solver {
             LinearSolver::Auto
                 if system.particle_count() < AutoSettings::DEFAULT.trial_particles =>

@@ -47,7 +47,7 @@ use hooke_core::{Mat3, Vec3};
 use nalgebra::{Matrix2, Vector2};
 
 use crate::linear::block::SymBlock;
-use crate::linear::matrix::BlockMatrix;
+use crate::linear::matrix::HessianBlocks;
 
 /// The friction's Hessian in Newton's model of `Φ`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -167,14 +167,14 @@ impl Lagged {
 
     /// Adds `scale · D` at `v` to a Newton system `A δ = −∇Φ`: subtracts
     /// `scale ∇D` from `b` and adds `scale` times `model`'s Hessian of `D`
-    /// to `a`.
+    /// to `a` (see [`HessianBlocks`]).
     pub(crate) fn add(
         &self,
         v: &[Vec3],
         (eps, model): (f64, FrictionModel),
         scale: f64,
         b: &mut [Vec3],
-        a: &mut BlockMatrix,
+        a: &mut impl HessianBlocks,
     ) {
         let s = self.tangential(v);
         let (ratio, hessian) = model.hessian(s, eps);
@@ -187,10 +187,10 @@ impl Lagged {
         for k in 0..self.count {
             let (pk, wk) = (self.particles[k] as usize, self.weights[k]);
             b[pk] -= scale * wk * gradient;
-            a.add_extra_row(pk, SymBlock::symmetric_part(&(scale * wk * wk * block)));
+            a.add_row(pk, SymBlock::symmetric_part(&(scale * wk * wk * block)));
             for l in k + 1..self.count {
                 let pl = self.particles[l] as usize;
-                a.add_extra_pair(pk, pl, scale * wk * self.weights[l] * block);
+                a.add_pair(pk, pl, scale * wk * self.weights[l] * block);
             }
         }
     }

@@ -54,7 +54,7 @@ mod pairs;
 
 use hooke_core::{State, System, Vec3, collision::barrier::barrier};
 
-use crate::linear::matrix::BlockMatrix;
+use crate::linear::matrix::HessianBlocks;
 use friction::{FrictionModel, Lagged};
 use obstacles::{Obstacles, lag_friction};
 use pairs::Pairs;
@@ -347,7 +347,8 @@ impl Contact {
 
     /// Adds the contact terms at positions `x` and velocities `v` to a
     /// Newton system `A δ = −∇Φ` in the velocities, `x = x̃ + βh v`:
-    /// `b −= βh κ ∇b + βh ∇D` and `A += β²h² κ ∇²b + βh ∇²D`. Like
+    /// `b −= βh κ ∇b + βh ∇D` and `A += β²h² κ ∇²b + βh ∇²D`, `A`'s blocks
+    /// going where `a` keeps them ([`HessianBlocks`]). Like
     /// [`Contact::value`], at a point of the motion last checked.
     pub(crate) fn add(
         &mut self,
@@ -356,7 +357,7 @@ impl Contact {
         v: &[Vec3],
         beta_h: f64,
         b: &mut [Vec3],
-        a: &mut BlockMatrix,
+        a: &mut impl HessianBlocks,
     ) {
         let d_hat = self.activation;
         if let Some(pairs) = &self.pairs {
@@ -366,7 +367,7 @@ impl Contact {
         self.close_gaps(system, x, |i, gap, n| {
             let (_, slope, curvature) = barrier(gap, d_hat);
             b[i] -= kb * slope * n;
-            a.add_extra_row(
+            a.add_row(
                 i,
                 crate::linear::block::SymBlock::rank_one_plus_identity(kbb * curvature, n, 0.0),
             );

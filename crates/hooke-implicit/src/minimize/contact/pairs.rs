@@ -26,7 +26,7 @@ use hooke_core::{Mat3, System, Vec3};
 
 use super::friction::Lagged;
 use crate::linear::block::SymBlock;
-use crate::linear::matrix::BlockMatrix;
+use crate::linear::matrix::HessianBlocks;
 
 /// How far beyond the contact distance `d̂` (plus thickness) a proximity
 /// search reaches, in units of `d̂`: its candidates stay valid, at any
@@ -403,7 +403,7 @@ impl Pairs {
         x: &[Vec3],
         (kappa, beta_h, activation): (f64, f64, f64),
         b: &mut [Vec3],
-        a: &mut BlockMatrix,
+        a: &mut impl HessianBlocks,
     ) -> usize {
         let (kb, kbb) = (kappa * beta_h, kappa * beta_h * beta_h);
         let mut count = 0;
@@ -416,10 +416,10 @@ impl Pairs {
                 let g = term.gradient.fixed_rows::<3>(3 * k).into_owned();
                 b[p] -= kb * g;
                 let block: Mat3 = term.hessian.fixed_view::<3, 3>(3 * k, 3 * k).into_owned();
-                a.add_extra_row(p, SymBlock::symmetric_part(&(kbb * block)));
+                a.add_row(p, SymBlock::symmetric_part(&(kbb * block)));
                 for (l, &q) in pair.particles.iter().enumerate().skip(k + 1) {
                     let block: Mat3 = term.hessian.fixed_view::<3, 3>(3 * k, 3 * l).into_owned();
-                    a.add_extra_pair(p, q, kbb * block);
+                    a.add_pair(p, q, kbb * block);
                 }
             }
         }
