@@ -18,27 +18,13 @@ use std::time::Instant;
 
 use hooke::implicit::{FastMassSpring, LinearSolver, Minimizer, PcgSettings};
 use hooke::prelude::*;
-use hooke::scenes::{Corner, Mass};
+
+#[allow(dead_code)] // the bench uses one of the tests' helpers
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 const DT: f64 = 1.0 / 60.0;
 const STEPS: usize = 30;
-
-fn cloth(n: usize) -> System {
-    let body = Cloth::grid(n, n)
-        .size(1.0, 1.0)
-        .mass(Mass::Total(1.0))
-        .stretch(5000.0)
-        .shear(500.0)
-        .bend(50.0)
-        .pin_corners([Corner::TopLeft, Corner::TopRight])
-        .build()
-        .unwrap()
-        .self_collision(false);
-    let mut b = SystemBuilder::new();
-    body.add_to(&mut b);
-    b.gravity([0.0, -9.81, 0.0]);
-    b.build().unwrap()
-}
 
 /// Backward Euler converged to `tolerance` with Cholesky (the reference,
 /// and the floor).
@@ -47,6 +33,15 @@ fn converged(tolerance: f64) -> Implicit {
         .with_solver(LinearSolver::Cholesky)
         .with_newton(1000, tolerance)
         .unwrap()
+}
+
+/// Where a quasi-Newton row stops each step.
+#[derive(Clone, Copy)]
+enum Stop {
+    /// After this many iterations, accepted.
+    Iterations(usize),
+    /// At this relative tolerance.
+    Tolerance(f64),
 }
 
 /// A variant: its label and a fresh integrator.
@@ -86,32 +81,58 @@ fn variants() -> Vec<Variant> {
             Box::new(move || Box::new(FastMassSpring::new(iterations).unwrap())),
         ));
     }
-    for iterations in [5, 10, 15, 30] {
+    // Quasi-Newton rows: a fixed number of iterations a step (each step
+    // accepted after them) or a tolerance, with the minimiser and the
+    // solver that applies H₀⁻¹.
+    let mut quasi = |label: String, stop: Stop, minimizer: Minimizer, solver: LinearSolver| {
         all.push((
-            format!("quasi-Newton, {iterations} iterations"),
+            label,
             Box::new(move || {
-                Box::new(
-                    Implicit::backward_euler()
-                        .with_minimizer(Minimizer::quasi_newton())
-                        .with_newton(iterations, 1e-12)
+                let integrator = Implicit::backward_euler()
+                    .with_minimizer(minimizer)
+                    .with_solver(solver);
+                Box::new(match stop {
+                    Stop::Iterations(k) => integrator
+                        .with_newton(k, 1e-12)
                         .unwrap()
                         .with_max_halvings(0),
-                )
+                    Stop::Tolerance(tol) => integrator.with_newton(1000, tol).unwrap(),
+                })
             }),
         ));
+    };
+    let (default, auto) = (Minimizer::quasi_newton(), LinearSolver::Auto);
+    for k in [4, 5, 6, 7, 10, 15, 30] {
+        quasi(
+            format!("quasi-Newton, {k} iterations"),
+            Stop::Iterations(k),
+            default,
+            auto,
+        );
     }
     for tol in [1e-1, 3e-2, 1e-2, 1e-3] {
-        all.push((
+        quasi(
             format!("quasi-Newton, {tol:e}"),
-            Box::new(move || {
-                Box::new(
-                    Implicit::backward_euler()
-                        .with_minimizer(Minimizer::quasi_newton())
-                        .with_newton(1000, tol)
-                        .unwrap(),
-                )
-            }),
-        ));
+            Stop::Tolerance(tol),
+            default,
+            auto,
+        );
+    }
+    // Every step's history started afresh (Liu et al.), or all five of the
+    // last step's pairs carried, against the default's newest one.
+    for (carried, name) in [(0, "no pair carried"), (5, "5 pairs carried")] {
+        let minimizer = Minimizer::QuasiNewton {
+            history: Minimizer::HISTORY,
+            carried,
+        };
+        for k in [5, 10, 30] {
+            let label = format!("quasi-Newton, {k} iterations, {name}");
+            quasi(label, Stop::Iterations(k), minimizer, auto);
+        }
+        for tol in [3e-2, 1e-3] {
+            let label = format!("quasi-Newton, {tol:e}, {name}");
+            quasi(label, Stop::Tolerance(tol), minimizer, auto);
+        }
     }
     // H₀⁻¹ by its factor or by one multigrid V-cycle, whichever `auto`
     // would take at this size.
@@ -119,44 +140,18 @@ fn variants() -> Vec<Variant> {
         ("factored", LinearSolver::Cholesky),
         ("multigrid", LinearSolver::Amg(PcgSettings::default())),
     ] {
-        all.push((
-            format!("quasi-Newton, 10 iterations, H₀ {name}"),
-            Box::new(move || {
-                Box::new(
-                    Implicit::backward_euler()
-                        .with_minimizer(Minimizer::quasi_newton())
-                        .with_solver(solver)
-                        .with_newton(10, 1e-12)
-                        .unwrap()
-                        .with_max_halvings(0),
-                )
-            }),
-        ));
-        all.push((
-            format!("quasi-Newton, 1e-2, H₀ {name}"),
-            Box::new(move || {
-                Box::new(
-                    Implicit::backward_euler()
-                        .with_minimizer(Minimizer::quasi_newton())
-                        .with_solver(solver)
-                        .with_newton(1000, 1e-2)
-                        .unwrap(),
-                )
-            }),
-        ));
+        let label = format!("quasi-Newton, 10 iterations, H₀ {name}");
+        quasi(label, Stop::Iterations(10), default, solver);
+        let label = format!("quasi-Newton, 1e-2, H₀ {name}");
+        quasi(label, Stop::Tolerance(1e-2), default, solver);
     }
     for history in [2, 10] {
-        all.push((
-            format!("quasi-Newton, 1e-2, history {history}"),
-            Box::new(move || {
-                Box::new(
-                    Implicit::backward_euler()
-                        .with_minimizer(Minimizer::QuasiNewton { history })
-                        .with_newton(1000, 1e-2)
-                        .unwrap(),
-                )
-            }),
-        ));
+        let minimizer = Minimizer::QuasiNewton {
+            history,
+            carried: Minimizer::CARRIED,
+        };
+        let label = format!("quasi-Newton, 1e-2, history {history}");
+        quasi(label, Stop::Tolerance(1e-2), minimizer, auto);
     }
     all
 }
@@ -210,7 +205,7 @@ fn main() -> std::io::Result<()> {
     )?;
     writeln!(out, "|---|---|---|---|---|---|---|")?;
     for n in sizes {
-        let system = cloth(n);
+        let system = common::bench_cloth(n);
         let mut reference = converged(1e-9);
         let (exact, seconds, iterations, _) = run(&system, &mut reference);
         writeln!(

@@ -268,8 +268,8 @@ fn integrator_parameters(spec: &IntegratorSpec, particles: usize) -> String {
                 Minimizer::Newton => format!(
                     ", {solver}, converged: at most {newton_iterations} Newton iterations to a relative {newton_tolerance:e}, {substeps}{strict}"
                 ),
-                Minimizer::QuasiNewton { history } => format!(
-                    ", quasi-Newton (L-BFGS, history {history}, initial Hessian the spring Laplacian, {}): at most {newton_iterations} iterations to a relative {newton_tolerance:e}, {substeps}{strict}",
+                Minimizer::QuasiNewton { history, carried } => format!(
+                    ", quasi-Newton (L-BFGS, history {history}, {carried} carried into the next step, initial Hessian the spring Laplacian, {}): at most {newton_iterations} iterations to a relative {newton_tolerance:e}, {substeps}{strict}",
                     initial_hessian(solver_setting)
                 ),
             }

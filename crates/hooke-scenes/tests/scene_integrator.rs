@@ -164,6 +164,11 @@ fn implicit_step_keys_out_of_range_or_misplaced_are_errors_naming_the_key() {
         ("history = 3", "integrator.history"),
         ("step = \"newton\"\nhistory = 3", "integrator.history"),
         ("method = \"rk4\"\nhistory = 3", "integrator.history"),
+        ("carried_pairs = 1", "integrator.carried_pairs"),
+        (
+            "step = \"quasi-newton\"\nhistory = 2\ncarried_pairs = 3",
+            "integrator.carried_pairs",
+        ),
     ] {
         let error = parse(&format!("[integrator]\n{keys}\n{CLOTH}")).unwrap_err();
         let message = error.to_string();
@@ -181,7 +186,24 @@ fn the_step_key_names_the_minimiser_and_history_its_memory() {
         ("step = \"quasi-newton\"", Minimizer::quasi_newton()),
         (
             "step = \"quasi-newton\"\nhistory = 12",
-            Minimizer::QuasiNewton { history: 12 },
+            Minimizer::QuasiNewton {
+                history: 12,
+                carried: Minimizer::CARRIED,
+            },
+        ),
+        (
+            "step = \"quasi-newton\"\nhistory = 12\ncarried_pairs = 0",
+            Minimizer::QuasiNewton {
+                history: 12,
+                carried: 0,
+            },
+        ),
+        (
+            "step = \"quasi-newton\"\nhistory = 0",
+            Minimizer::QuasiNewton {
+                history: 0,
+                carried: 0,
+            },
         ),
     ] {
         let text = format!("[integrator]\n{keys}\n{CLOTH}");

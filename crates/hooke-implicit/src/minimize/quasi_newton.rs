@@ -27,8 +27,14 @@
 //! with `sᵀy ≤ 0` (where `Φ` is not convex along `s`: compressed springs,
 //! inverted volume elements) carries no curvature and is skipped, so the
 //! implied Hessian stays positive definite and every direction descends.
-//! The history starts empty at every (sub)step, as the contact terms and
-//! `βh` may change between them.
+//! A (sub)step starts its history with the newest pair of the last one
+//! ([`Minimizer::CARRIED`](crate::Minimizer::CARRIED)): its correction is
+//! mostly along the cloth's slow modes (the swing), which `H₀`'s `kI` per
+//! spring makes far too stiff and which the next step's correction
+//! follows too. The pair describes the last step's `Φ`, whose Hessian
+//! differs from the next one's by the springs' motion over a step. The
+//! history starts empty where `H₀` changes (`βh`, the contact terms'
+//! stand-in).
 //!
 //! Contact barriers are far stiffer than springs near their pairs, and a
 //! history of a few pairs cannot learn them: on a 10×10 cloth landing on
@@ -82,7 +88,9 @@ pub(crate) struct QuasiNewton {
 impl QuasiNewton {
     /// Starts a (sub)step of `system` with `βh = beta_h` keeping `history`
     /// pairs, `H₀⁻¹` applied as `inverse` says: factorizes `H₀` unless it is
-    /// factorized for this `βh`, and empties the history.
+    /// factorized for this `βh`, and starts the history with the newest
+    /// `carried` pairs of the last (sub)step where `H₀` and the history's
+    /// length are as they were, empty otherwise.
     ///
     /// # Errors
     /// [`StepError::SystemTooLarge`] or [`StepError::NotPositiveDefinite`]
@@ -94,7 +102,7 @@ impl QuasiNewton {
         &mut self,
         system: &System,
         (beta_h, contact): (f64, bool),
-        (history, inverse): (usize, Inverse),
+        (history, carried, inverse): (usize, usize, Inverse),
         time: f64,
     ) -> Result<(), StepError> {
         if self.inverse != Some(inverse) {
@@ -110,6 +118,7 @@ impl QuasiNewton {
         if !contact && !factorized {
             self.factorize(system, &[], time)?;
         }
+        let carry = factorized && !contact && self.history == history;
         let n = system.particle_count();
         self.history = history;
         for buffers in [&mut self.s, &mut self.y] {
@@ -123,8 +132,14 @@ impl QuasiNewton {
         }
         self.rho.truncate(history);
         self.alpha.truncate(history);
-        self.first = 0;
-        self.len = 0;
+        if carry && history > 0 {
+            let kept = self.len.min(carried);
+            self.first = (self.first + self.len - kept) % history;
+            self.len = kept;
+        } else {
+            self.first = 0;
+            self.len = 0;
+        }
         self.has_last = false;
         Ok(())
     }
@@ -273,4 +288,61 @@ fn weights(beta_h: f64) -> (f64, impl Fn(&hooke_core::Spring) -> f64) {
     (beta_h, move |s: &hooke_core::Spring| {
         beta_h * s.damping + beta_h * beta_h * s.stiffness
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use hooke_core::reference::Sheet;
+
+    use super::*;
+
+    /// Fills the history with `count` pairs of a convex quadratic
+    /// (`∇Φ = v`, so `y = s`): directions at `count + 1` iterates.
+    fn fill(quasi: &mut QuasiNewton, system: &System, count: usize) {
+        let n = system.particle_count();
+        let mut delta = vec![Vec3::zeros(); n];
+        for k in 0..=count {
+            let v: Vec<Vec3> = (0..n).map(|i| Vec3::repeat((k * n + i) as f64)).collect();
+            let b: Vec<Vec3> = v.iter().map(|v| -v).collect();
+            quasi.direction(system, &b, &v, &mut delta);
+        }
+    }
+
+    /// The newest `carried` pairs start the next (sub)step's history while
+    /// `H₀` is the same; a new `βh`, contact terms (whose stand-in changes
+    /// `H₀`) or a new history length start it empty.
+    #[test]
+    fn the_newest_pairs_are_carried_only_while_the_initial_hessian_stays() {
+        let system = Sheet::new(4).system().unwrap();
+        let mut quasi = QuasiNewton::default();
+        let start = |q: &mut QuasiNewton, beta_h: f64, contact: bool, history: usize| {
+            q.begin(
+                &system,
+                (beta_h, contact),
+                (history, 2, Inverse::Factor),
+                0.0,
+            )
+            .unwrap();
+        };
+        start(&mut quasi, 0.01, false, 5);
+        fill(&mut quasi, &system, 4);
+        assert_eq!(quasi.len, 4);
+        start(&mut quasi, 0.01, false, 5);
+        assert_eq!(quasi.len, 2);
+        // The carried pairs are the newest: s = v₄ − v₃.
+        let newest = (quasi.first + quasi.len - 1) % 5;
+        let n = system.particle_count() as f64;
+        assert!((quasi.s[newest][0] - Vec3::repeat(n)).norm() < 1e-12);
+        fill(&mut quasi, &system, 1);
+        assert_eq!(quasi.len, 3);
+        for (beta_h, contact, history) in [(0.02, false, 5), (0.01, true, 5), (0.01, false, 4)] {
+            start(&mut quasi, 0.01, false, 5);
+            fill(&mut quasi, &system, 3);
+            start(&mut quasi, beta_h, contact, history);
+            assert_eq!(
+                quasi.len, 0,
+                "βh {beta_h}, contact {contact}, history {history}"
+            );
+        }
+    }
 }

@@ -125,11 +125,11 @@ impl Implicit {
 
         let (compressed, strict) = (self.settings.compressed, self.settings.strict);
         let quasi = match self.settings.minimizer {
-            Minimizer::QuasiNewton { history } => {
+            Minimizer::QuasiNewton { history, carried } => {
                 let contact = Contact::present(system);
                 let inverse = self.settings.solver.initial_hessian_inverse();
                 self.quasi
-                    .begin(system, (beta_h, contact), (history, inverse), time)?;
+                    .begin(system, (beta_h, contact), (history, carried, inverse), time)?;
                 Some(&mut self.quasi)
             }
             _ => None,

@@ -87,6 +87,7 @@ pub(crate) fn integrator(
         ("solver", t.solver.as_ref().map(Spanned::span)),
         ("step", t.step.as_ref().map(Spanned::span)),
         ("history", t.history.as_ref().map(Spanned::span)),
+        ("carried_pairs", t.carried_pairs.as_ref().map(Spanned::span)),
         (
             "newton_iterations",
             t.newton_iterations.as_ref().map(Spanned::span),
@@ -222,10 +223,22 @@ fn implicit(
         .history
         .as_ref()
         .map_or(Minimizer::HISTORY, |v| *v.get_ref());
+    let carried = match &t.carried_pairs {
+        None => Minimizer::CARRIED.min(history),
+        Some(c) if *c.get_ref() > history => {
+            return Err(src.invalid(
+                c.span(),
+                "integrator.carried_pairs",
+                format!("{} with history = {history}", c.get_ref()),
+                "at most `history`",
+            ));
+        }
+        Some(c) => *c.get_ref(),
+    };
     // The minimisers by their own names; "converged" is Newton's old name.
     let minimizers = [
         Minimizer::Newton,
-        Minimizer::QuasiNewton { history },
+        Minimizer::QuasiNewton { history, carried },
         Minimizer::Linearized,
     ];
     let minimizer = match t.step.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
@@ -245,16 +258,19 @@ fn implicit(
                 )
             })?,
     };
-    if let (Some(h), false) = (
-        &t.history,
-        matches!(minimizer, Minimizer::QuasiNewton { .. }),
-    ) {
-        return Err(src.invalid(
-            h.span(),
-            "integrator.history",
-            "`history` without step = \"quasi-newton\"".to_owned(),
-            "`history` only with step = \"quasi-newton\"",
-        ));
+    if !matches!(minimizer, Minimizer::QuasiNewton { .. }) {
+        let keys = [
+            ("history", t.history.as_ref().map(Spanned::span)),
+            ("carried_pairs", t.carried_pairs.as_ref().map(Spanned::span)),
+        ];
+        if let Some((key, Some(span))) = keys.into_iter().find(|(_, span)| span.is_some()) {
+            return Err(src.invalid(
+                span,
+                format!("integrator.{key}"),
+                format!("`{key}` without step = \"quasi-newton\""),
+                format!("`{key}` only with step = \"quasi-newton\""),
+            ));
+        }
     }
     let value = |key: Option<&Spanned<f64>>| key.map(|v| *v.get_ref());
     let error_control = match (value(t.rtol.as_ref()), value(t.atol.as_ref())) {

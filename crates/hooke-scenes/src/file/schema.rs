@@ -44,6 +44,7 @@ pub(crate) struct IntegratorTable {
     pub(crate) solver: Option<Spanned<String>>,
     pub(crate) step: Option<Spanned<String>>,
     pub(crate) history: Option<Spanned<usize>>,
+    pub(crate) carried_pairs: Option<Spanned<usize>>,
     pub(crate) tolerance: Option<Spanned<f64>>,
     pub(crate) max_iterations: Option<Spanned<usize>>,
     pub(crate) newton_iterations: Option<Spanned<usize>>,
