@@ -181,7 +181,14 @@ impl ScalarLevel {
             return Err(NotBuilt);
         }
         graph.diagonal.clone_from(&diagonal);
-        let (agg, count) = aggregate(&graph, STRENGTH);
+        // Where no connection is strong (springs far softer than the
+        // masses), every neighbour counts: the level still coarsens.
+        let (agg, count) = match aggregate(&graph, STRENGTH) {
+            (_, count) if count == 0 || count as f64 > MIN_REDUCTION * n as f64 => {
+                aggregate(&graph, 0.0)
+            }
+            strong => strong,
+        };
         drop(graph);
         let t = tentative(&agg, count);
         let inverse_diagonal: Vec<f64> = diagonal.iter().map(|d| d.recip()).collect();
@@ -473,6 +480,35 @@ mod tests {
             counts[1] <= 25 && counts[1] as f64 <= 1.5 * counts[0] as f64,
             "{counts:?}"
         );
+    }
+
+    /// Springs a thousand times softer than the masses make no connection
+    /// strong; the hierarchy still coarsens (instead of factorizing the
+    /// whole matrix), and PCG with it converges at once.
+    #[test]
+    fn a_matrix_without_strong_connections_still_coarsens() {
+        let mut a = cloth(60);
+        for i in 0..a.rows() {
+            for k in a.row_ptr[i]..a.row_ptr[i + 1] {
+                if a.col_idx[k] as usize != i {
+                    a.values[k] *= 1e-7;
+                }
+            }
+        }
+        // Each diagonal is its mass plus the softened springs' weights.
+        for i in 0..a.rows() {
+            let off: f64 = (a.row_ptr[i]..a.row_ptr[i + 1])
+                .filter(|&k| a.col_idx[k] as usize != i)
+                .map(|k| -a.values[k])
+                .sum();
+            let diagonal = (a.row_ptr[i]..a.row_ptr[i + 1])
+                .find(|&k| a.col_idx[k] as usize == i)
+                .unwrap();
+            a.values[diagonal] = 1.0 / 3600.0 + off;
+        }
+        let mut amg = ScalarAmg::build(&a).unwrap();
+        assert!(amg.unknowns(&a).len() >= 2, "{:?}", amg.unknowns(&a));
+        assert!(pcg(&mut amg, &a, &noise(a.rows(), 5)) <= 10);
     }
 
     /// A matrix within the coarsest level's size is factorized whole, and
