@@ -59,10 +59,10 @@ pub(crate) struct Laplacian {
     pub(crate) unknown: Vec<u32>,
     a: Csr,
     /// Per free particle, its diagonal entry in `a`'s values.
-    diagonal: Vec<usize>,
+    diagonal: Vec<u32>,
     /// Per spring, the entries `(i, i), (j, j), (i, j), (j, i)` of `a`'s
-    /// values it adds to (`usize::MAX` where an end is pinned).
-    entries: Vec<[usize; 4]>,
+    /// values it adds to (`u32::MAX` where an end is pinned).
+    entries: Vec<[u32; 4]>,
     solver: Solver,
     /// The three coordinates of a right-hand side, then of the solution,
     /// one after the other (coordinate `c` of free particle `u` at
@@ -113,6 +113,9 @@ impl Laplacian {
         }
         pairs.sort_unstable();
         pairs.dedup();
+        if pairs.len() >= u32::MAX as usize {
+            return Err(too_large());
+        }
         let mut a = Csr {
             row_ptr: vec![0; free + 1],
             col_idx: pairs.iter().map(|&(_, c)| c).collect(),
@@ -124,15 +127,16 @@ impl Laplacian {
         for r in 0..free {
             a.row_ptr[r + 1] += a.row_ptr[r];
         }
-        let at = |r: u32, c: u32| {
+        let at = |r: u32, c: u32| -> u32 {
             if r == u32::MAX || c == u32::MAX {
-                return usize::MAX;
+                return u32::MAX;
             }
             let row = a.row_ptr[r as usize]..a.row_ptr[r as usize + 1];
-            row.start
+            let k = row.start
                 + a.col_idx[row]
                     .binary_search(&c)
-                    .expect("every spring's entries are in the pattern")
+                    .expect("every spring's entries are in the pattern");
+            k as u32
         };
         let diagonal = (0..count).map(|u| at(u, u)).collect();
         let entries = system
@@ -142,7 +146,7 @@ impl Laplacian {
                 let (ui, uj) = (unknown[s.i], unknown[s.j]);
                 let off = |r, c| {
                     if ui == u32::MAX || uj == u32::MAX {
-                        usize::MAX
+                        u32::MAX
                     } else {
                         at(r, c)
                     }
@@ -203,14 +207,15 @@ impl Laplacian {
         for (i, &m) in system.masses().iter().enumerate() {
             if self.unknown[i] != u32::MAX {
                 let added = extra.get(i).copied().unwrap_or(0.0);
-                values[*free.next().expect("one diagonal a free particle")] = m + shift + added;
+                let k = *free.next().expect("one diagonal a free particle");
+                values[k as usize] = m + shift + added;
             }
         }
         for (s, entries) in system.springs().iter().zip(&self.entries) {
             let w = weight(s);
             for (k, &e) in entries.iter().enumerate() {
-                if e != usize::MAX {
-                    values[e] += if k < 2 { w } else { -w };
+                if e != u32::MAX {
+                    values[e as usize] += if k < 2 { w } else { -w };
                 }
             }
         }
