@@ -13,7 +13,7 @@ use crate::linear::vector::for_each_row;
 use crate::{LinearSolver, PcgSettings};
 
 /// How a [`Laplacian`] applies its inverse.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(crate) enum Inverse {
     /// Exactly, by a sparse Cholesky factor.
     Factor,
@@ -24,6 +24,7 @@ pub(crate) enum Inverse {
     Multigrid,
     /// The factor while it holds at most [`FACTOR_ENTRIES_PER_UNKNOWN`]
     /// entries per free particle, multigrid beyond.
+    #[default]
     Auto,
 }
 
@@ -229,6 +230,8 @@ impl Laplacian {
                 .factorize(&self.a)
                 .map_err(|()| not_positive_definite())?,
             Solver::Multigrid(amg, _) => {
+                // The old hierarchy goes before the new one is built, so
+                // that the two are never held together.
                 *amg = None;
                 *amg = Some(ScalarAmg::build(&self.a).map_err(|_| not_positive_definite())?);
             }

@@ -57,7 +57,7 @@ use crate::minimize::laplacian::{Inverse, Laplacian};
 pub(crate) struct QuasiNewton {
     laplacian: Option<Laplacian>,
     /// How `H₀⁻¹` is applied, for a new pattern.
-    inverse: Option<Inverse>,
+    inverse: Inverse,
     /// The pairs `(s, y, 1/sᵀy)`, oldest first from `first`, a ring of
     /// `history` entries of which `len` hold pairs; the buffers are
     /// allocated as pairs arrive, so a long history costs only what the
@@ -105,9 +105,9 @@ impl QuasiNewton {
         (history, carried, inverse): (usize, usize, Inverse),
         time: f64,
     ) -> Result<(), StepError> {
-        if self.inverse != Some(inverse) {
+        if self.inverse != inverse {
             self.laplacian = None;
-            self.inverse = Some(inverse);
+            self.inverse = inverse;
         }
         self.beta_h = beta_h;
         self.pending = contact;
@@ -190,8 +190,13 @@ impl QuasiNewton {
         match &mut self.laplacian {
             Some(l) if l.is_for(system) => l.refactor(system, weights(beta_h), key, time),
             slot => {
-                let inverse = self.inverse.unwrap_or(Inverse::Auto);
-                *slot = Some(Laplacian::new(system, weights(beta_h), key, inverse, time)?);
+                *slot = Some(Laplacian::new(
+                    system,
+                    weights(beta_h),
+                    key,
+                    self.inverse,
+                    time,
+                )?);
                 Ok(())
             }
         }

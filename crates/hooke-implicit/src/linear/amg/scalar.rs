@@ -23,7 +23,7 @@ use super::aggregation::{Graph, ISOLATED, aggregate};
 use super::coarse::ScalarCholesky;
 use super::csr::Csr;
 use super::level::{chebyshev, estimate_largest, smoothing_weight_for};
-use super::smoother::{Chebyshev, Sweep};
+use super::smoother::{BlockInverse, Chebyshev, Sweep};
 
 /// The most unknowns of the coarsest level, which is factorized.
 pub(crate) const COARSE_UNKNOWNS: usize = 2000;
@@ -53,7 +53,7 @@ pub(crate) struct ScalarAmg {
 /// level, the next level's operator and the vectors of a cycle.
 #[derive(Debug)]
 struct ScalarLevel {
-    inverse_diagonal: Vec<f64>,
+    inverse: BlockInverse<1>,
     smoother: Chebyshev,
     p: Csr,
     r: Csr,
@@ -127,7 +127,7 @@ fn cycle(
         return;
     };
     let ScalarLevel {
-        inverse_diagonal,
+        inverse,
         smoother,
         p,
         r,
@@ -137,21 +137,21 @@ fn cycle(
         coarse_x,
         sweep,
     } = level;
-    let inverse = |r: &[f64], z: &mut [f64]| scale(inverse_diagonal, r, z);
+    let inverse = |r: &[f64], z: &mut [f64]| inverse.apply(r, z);
     x.fill(0.0);
-    smoother.smooth(&mut |x, y| multiply(a, x, y), &inverse, b, x, true, sweep);
-    multiply(a, x, residual);
+    smoother.smooth(&mut |x, y| a.apply(x, y), &inverse, b, x, true, sweep);
+    a.apply(x, residual);
     residual
         .iter_mut()
         .zip(b)
         .for_each(|(ri, bi)| *ri = bi - *ri);
-    multiply(r, residual, coarse_b);
+    r.apply(residual, coarse_b);
     cycle(rest, coarsest, coarse, coarse_b, coarse_x);
-    multiply(p, coarse_x, residual);
+    p.apply(coarse_x, residual);
     x.iter_mut()
         .zip(residual.iter())
         .for_each(|(xi, c)| *xi += c);
-    smoother.smooth(&mut |x, y| multiply(a, x, y), &inverse, b, x, false, sweep);
+    smoother.smooth(&mut |x, y| a.apply(x, y), &inverse, b, x, false, sweep);
 }
 
 impl ScalarLevel {
@@ -177,9 +177,10 @@ impl ScalarLevel {
             }
             graph.ptr.push(graph.adj.len());
         }
-        if diagonal.iter().any(|d| !(*d > 0.0 && d.is_finite())) {
-            return Err(NotBuilt);
-        }
+        let mut inverse = BlockInverse::<1>::new(n);
+        inverse
+            .refill(|i, out| out[0][0] = diagonal[i])
+            .map_err(|_| NotBuilt)?;
         graph.diagonal.clone_from(&diagonal);
         // Where no connection is strong (springs far softer than the
         // masses), every neighbour counts: the level still coarsens.
@@ -191,17 +192,12 @@ impl ScalarLevel {
         };
         drop(graph);
         let t = tentative(&agg, count);
-        let inverse_diagonal: Vec<f64> = diagonal.iter().map(|d| d.recip()).collect();
-        let lambda = estimate_largest(
-            &mut |x, y| multiply(a, x, y),
-            &|r, z| scale(&inverse_diagonal, r, z),
-            n,
-        );
+        let lambda = estimate_largest(&mut |x, y| a.apply(x, y), &|r, z| inverse.apply(r, z), n);
         let omega = smoothing_weight_for(lambda);
         // P = T − ω D⁻¹ A T: A T holds T's entries (A's diagonal is positive).
-        let mut p = product(a, &t, count);
+        let mut p = a.product(&t, count);
         for i in 0..n {
-            let w = omega * inverse_diagonal[i];
+            let w = omega * diagonal[i].recip();
             for k in p.row_ptr[i]..p.row_ptr[i + 1] {
                 let own = if p.col_idx[k] == agg[i] {
                     t.values[t.row_ptr[i]]
@@ -211,10 +207,10 @@ impl ScalarLevel {
                 p.values[k] = own - w * p.values[k];
             }
         }
-        let r = transpose(&p, count);
-        let coarse = product(&r, &product(a, &p, count), count);
+        let r = p.transpose(count);
+        let coarse = r.product(&a.product(&p, count), count);
         Ok(Self {
-            inverse_diagonal,
+            inverse,
             smoother: chebyshev(lambda, DEGREE),
             residual: vec![0.0; n],
             coarse_b: vec![0.0; count],
@@ -253,96 +249,6 @@ fn tentative(agg: &[u32], count: usize) -> Csr {
         t.row_ptr.push(t.col_idx.len());
     }
     t
-}
-
-/// `z = D⁻¹ r`.
-fn scale(inverse_diagonal: &[f64], r: &[f64], z: &mut [f64]) {
-    z.iter_mut()
-        .zip(r.iter().zip(inverse_diagonal))
-        .for_each(|(zi, (ri, di))| *zi = ri * di);
-}
-
-/// `y = A x`, by rows in parallel for a long `y`.
-fn multiply(a: &Csr, x: &[f64], y: &mut [f64]) {
-    let row = |i: usize| -> f64 {
-        (a.row_ptr[i]..a.row_ptr[i + 1])
-            .map(|k| a.values[k] * x[a.col_idx[k] as usize])
-            .sum()
-    };
-    #[cfg(feature = "parallel")]
-    if y.len() >= crate::linear::vector::PARALLEL_MIN_PARTICLES {
-        use rayon::prelude::*;
-        y.par_iter_mut()
-            .enumerate()
-            .with_min_len(crate::linear::vector::MIN_CHUNK)
-            .for_each(|(i, yi)| *yi = row(i));
-        return;
-    }
-    for (i, yi) in y.iter_mut().enumerate() {
-        *yi = row(i);
-    }
-}
-
-/// The product `A B` of `B` with `columns` columns, columns sorted within
-/// each row (Gustavson's row-by-row product).
-fn product(a: &Csr, b: &Csr, columns: usize) -> Csr {
-    let mut c = Csr {
-        row_ptr: Vec::with_capacity(a.rows() + 1),
-        ..Csr::default()
-    };
-    c.row_ptr.push(0);
-    // Per column, its position in the current row of `c` (if at or after
-    // the row's start).
-    let mut at = vec![usize::MAX; columns];
-    let mut row: Vec<(u32, f64)> = Vec::new();
-    for i in 0..a.rows() {
-        row.clear();
-        for k in a.row_ptr[i]..a.row_ptr[i + 1] {
-            let (j, v) = (a.col_idx[k] as usize, a.values[k]);
-            for m in b.row_ptr[j]..b.row_ptr[j + 1] {
-                let col = b.col_idx[m];
-                let slot = &mut at[col as usize];
-                if *slot < row.len() && row[*slot].0 == col {
-                    row[*slot].1 += v * b.values[m];
-                } else {
-                    *slot = row.len();
-                    row.push((col, v * b.values[m]));
-                }
-            }
-        }
-        row.sort_unstable_by_key(|e| e.0);
-        c.col_idx.extend(row.iter().map(|e| e.0));
-        c.values.extend(row.iter().map(|e| e.1));
-        c.row_ptr.push(c.col_idx.len());
-    }
-    c
-}
-
-/// `Aᵀ` of `A` with `columns` columns.
-fn transpose(a: &Csr, columns: usize) -> Csr {
-    let mut row_ptr = vec![0usize; columns + 1];
-    for &j in &a.col_idx {
-        row_ptr[j as usize + 1] += 1;
-    }
-    for j in 0..columns {
-        row_ptr[j + 1] += row_ptr[j];
-    }
-    let mut next = row_ptr.clone();
-    let mut col_idx = vec![0u32; a.col_idx.len()];
-    let mut values = vec![0.0; a.values.len()];
-    for i in 0..a.rows() {
-        for k in a.row_ptr[i]..a.row_ptr[i + 1] {
-            let j = a.col_idx[k] as usize;
-            col_idx[next[j]] = i as u32;
-            values[next[j]] = a.values[k];
-            next[j] += 1;
-        }
-    }
-    Csr {
-        row_ptr,
-        col_idx,
-        values,
-    }
 }
 
 #[cfg(test)]
@@ -419,13 +325,13 @@ mod tests {
         let mut rz = dot(&r, &z);
         let goal = 1e-8 * dot(b, b).sqrt();
         for iteration in 1..=200 {
-            multiply(a, &p, &mut q);
+            a.apply(&p, &mut q);
             let alpha = rz / dot(&p, &q);
             x.iter_mut().zip(&p).for_each(|(xi, pi)| *xi += alpha * pi);
             r.iter_mut().zip(&q).for_each(|(ri, qi)| *ri -= alpha * qi);
             if dot(&r, &r).sqrt() <= goal {
                 // The recurrence's residual is the true one.
-                multiply(a, &x, &mut q);
+                a.apply(&x, &mut q);
                 let true_residual: f64 = b
                     .iter()
                     .zip(&q)
@@ -520,7 +426,7 @@ mod tests {
         assert_eq!(amg.unknowns(&a), [400]);
         let x = noise(400, 4);
         let mut b = vec![0.0; 400];
-        multiply(&a, &x, &mut b);
+        a.apply(&x, &mut b);
         let mut solved = vec![0.0; 400];
         amg.apply(&a, &b, &mut solved);
         for (s, x) in solved.iter().zip(&x) {
