@@ -110,7 +110,7 @@ fn variants() -> Vec<Variant> {
             auto,
         );
     }
-    for tol in [1e-1, 3e-2, 1e-2, 1e-3] {
+    for tol in [1e-1, 3e-2, 1e-2, 3e-3, 1e-3] {
         quasi(
             format!("quasi-Newton, {tol:e}"),
             Stop::Tolerance(tol),

@@ -350,4 +350,30 @@ mod tests {
             );
         }
     }
+
+    /// Steps of one size `h` keep one factor of `H₀`, and so their carried
+    /// pair, also where the clock's rounding makes the time left in a step
+    /// differ from `h` (`t + h − t ≠ h`).
+    #[test]
+    fn steps_of_one_size_keep_one_initial_hessian() {
+        use hooke_core::Integrator;
+
+        use crate::{Implicit, Minimizer};
+
+        let system = Sheet::new(4).system().unwrap();
+        let mut integrator = Implicit::backward_euler().with_minimizer(Minimizer::quasi_newton());
+        let mut state = system.initial_state();
+        let h = 0.1;
+        let mut rounded = 0;
+        for _ in 0..30 {
+            let t = state.time();
+            if ((t + h) - t).to_bits() != h.to_bits() {
+                rounded += 1;
+            }
+            integrator.step(&system, &mut state, h).unwrap();
+            let laplacian = integrator.quasi.laplacian.as_ref().unwrap();
+            assert!(laplacian.matches(&system, h.to_bits()), "after t = {t}");
+        }
+        assert!(rounded > 10, "{rounded} steps rounded");
+    }
 }
