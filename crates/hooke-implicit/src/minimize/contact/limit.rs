@@ -49,7 +49,8 @@ impl Pairs {
     ///   motion (farm-bench, 4 pairs; cloth-pile and two-cloths 1.00);
     /// - otherwise (a long motion) the pairs whose boxes, swept over the
     ///   motion and inflated by the contact distance `d̂` and the
-    ///   thickness, overlap, with their distances at `x`.
+    ///   thickness, overlap and which the motion can bring within `d̂`
+    ///   ([`Pairs::swept`]), with their distances at `x`.
     ///
     /// A pair whose distance `D` at the list's positions (`x` after a
     /// swept search) bounds its gap along the whole motion from below by
