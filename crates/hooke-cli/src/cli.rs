@@ -212,9 +212,19 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
         "{}: {} steps to t = {:.3} s, {:.3} ms per step (median){solver}",
         summary.integrator, summary.steps, summary.time, summary.step_ms_median
     )?;
+    // Stepping time per simulated second: at most 1 is real time.
+    let pace = if summary.time > 0.0 {
+        format!(
+            " ({:.2} s per simulated second, longest step {:.1} ms)",
+            summary.simulation_s / summary.time,
+            summary.step_ms_max
+        )
+    } else {
+        String::new()
+    };
     writeln!(
         out,
-        "wall {:.2} s: simulation {:.2} s, frames and pictures {:.2} s",
+        "wall {:.2} s: simulation {:.2} s{pace}, frames and pictures {:.2} s",
         summary.wall_s, summary.simulation_s, summary.output_s
     )?;
     writeln!(

@@ -181,6 +181,12 @@ fn run_writes_frames_and_summary_of_a_scene_file() {
     assert!(steps.contains("ms per step (median)"), "{steps}");
     assert!(steps.ends_with("Newton iterations per step"), "{steps}");
     assert!(line("wall ").contains(" s: simulation "), "{stdout}");
+    let pace = format!(
+        "({:.2} s per simulated second, longest step {:.1} ms)",
+        summary.simulation_s / summary.time,
+        summary.step_ms_max
+    );
+    assert!(line("wall ").contains(&pace), "{stdout}");
     assert!(line("energy ").contains(" J -> "), "{stdout}");
     assert!(line("energy ").contains("max strain"), "{stdout}");
     let frame = summary.preview_frame.unwrap();
