@@ -242,22 +242,37 @@ impl Pairs {
         );
         self.reference.clear();
         self.reference.extend_from_slice(x);
-        let searched = &mut self.searched;
+        Self::retain(
+            system,
+            x,
+            &mut self.near,
+            &mut self.searched,
+            |pair, distance| below(distance - pair.thickness, activation + margin),
+        );
+    }
+
+    /// Keeps the candidates `near` for which `close(pair, D)` holds, `D`
+    /// the pair's distance at `x`, and their distances in `searched`, in
+    /// the order of [`Pairs::pairs`].
+    fn retain(
+        system: &System,
+        x: &[Vec3],
+        near: &mut Candidates,
+        searched: &mut Vec<f64>,
+        close: impl Fn(&Pair, f64) -> bool,
+    ) {
         searched.clear();
         let mut within = |pair: Pair| {
             let distance = Self::distance(&pair, x);
-            // A pair at a position that is not a number stays listed.
-            let close = distance.is_nan() || distance - pair.thickness < activation + margin;
-            if close {
+            let keep = close(&pair, distance);
+            if keep {
                 searched.push(distance);
             }
-            close
+            keep
         };
-        self.near
-            .point_triangle
+        near.point_triangle
             .retain(|&vt| within(Self::point_triangle(system, vt)));
-        self.near
-            .edge_edge
+        near.edge_edge
             .retain(|&ef| within(Self::edge_edge(system, ef)));
     }
 
@@ -295,25 +310,17 @@ impl Pairs {
             let moved = (e - x - shift).norm();
             (moved, moved)
         }));
-        let (moved, searched) = (&self.moved, &mut self.searched);
-        searched.clear();
-        let mut within = |pair: Pair| {
-            let distance = Self::distance(&pair, x);
-            let (first, second) = pair.largest(|p| moved[p].0);
-            // A pair at a position that is not a number stays listed.
-            let close =
-                distance.is_nan() || distance - first - second - pair.thickness < activation;
-            if close {
-                searched.push(distance);
-            }
-            close
-        };
-        self.near
-            .point_triangle
-            .retain(|&vt| within(Self::point_triangle(system, vt)));
-        self.near
-            .edge_edge
-            .retain(|&ef| within(Self::edge_edge(system, ef)));
+        let moved = &self.moved;
+        Self::retain(
+            system,
+            x,
+            &mut self.near,
+            &mut self.searched,
+            |pair, distance| {
+                let (first, second) = pair.largest(|p| moved[p].0);
+                below(distance - first - second - pair.thickness, activation)
+            },
+        );
     }
 
     /// The candidates that may lie within `activation` beyond their
@@ -503,6 +510,13 @@ impl Pairs {
             ));
         }
     }
+}
+
+/// Whether a pair's lower bound on its gap, `bound`, is below `reach`: the
+/// pair may come within it, and stays listed. A bound that is not a number
+/// (a position that is not one) keeps the pair too.
+fn below(bound: f64, reach: f64) -> bool {
+    bound.is_nan() || bound < reach
 }
 
 /// The common translation `t` of the particles from `reference` to `y`
