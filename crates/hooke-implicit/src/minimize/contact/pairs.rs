@@ -590,6 +590,34 @@ mod tests {
         close
     }
 
+    /// Asserts that every pair within `d̂` at any of `points + 1` evenly
+    /// spaced points of the motion from `x0` by `dx` is among `pairs`'
+    /// candidates; returns how many such pairs and points there are.
+    fn every_close_pair_listed(
+        system: &System,
+        pairs: &Pairs,
+        x0: &[Vec3],
+        dx: &[Vec3],
+        points: u32,
+    ) -> usize {
+        let d_hat = system.contact_distance();
+        let mut everything = Candidates::default();
+        BroadPhase::default().proximity(system.surfaces(), x0, 1.0, &mut everything);
+        let listed = |particles: [usize; 4]| {
+            Pairs::pairs(system, &pairs.near).any(|p| p.particles == particles)
+        };
+        let mut close = 0;
+        for step in 0..=points {
+            let t = f64::from(step) / f64::from(points);
+            let x: Vec<Vec3> = x0.iter().zip(dx).map(|(x, d)| x + t * d).collect();
+            for pair in within(system, &everything, &x, d_hat) {
+                close += 1;
+                assert!(listed(pair), "{pair:?} at τ = {t}");
+            }
+        }
+        close
+    }
+
     /// The sheets, their contact distance and rest positions, and their
     /// pairs searched there.
     fn searched_sheets() -> (System, f64, Vec<Vec3>, Pairs) {
@@ -754,8 +782,6 @@ mod tests {
     fn the_line_search_limit_skips_only_pairs_that_ccd_clears_and_covers_the_motion() {
         let (system, d_hat, x0, mut pairs) = searched_sheets();
         let keep = 0.1;
-        let mut everything = Candidates::default();
-        BroadPhase::default().proximity(system.surfaces(), &x0, 1.0, &mut everything);
         let mut unit = uniform(5);
         // Motions within the Verlet list's margin (alone, and with the
         // sheets carried 40 d̂ as a whole), beyond it (a new list whose
@@ -799,18 +825,7 @@ mod tests {
                 "motions of {size} d̂: {tau} against {unpruned}"
             );
             // Every pair within d̂ anywhere along the motion is a candidate.
-            let listed = |particles: [usize; 4]| {
-                Pairs::pairs(&system, &pairs.near).any(|p| p.particles == particles)
-            };
-            let mut close = 0;
-            for step in 0..=10 {
-                let t = f64::from(step) / 10.0;
-                let x: Vec<Vec3> = x0.iter().zip(&dx).map(|(x, d)| x + t * d).collect();
-                for pair in within(&system, &everything, &x, d_hat) {
-                    close += 1;
-                    assert!(listed(pair), "motions of {size} d̂: {pair:?} at τ = {t}");
-                }
-            }
+            let close = every_close_pair_listed(&system, &pairs, &x0, &dx, 10);
             assert!(close > 0, "motions of {size} d̂ bring no pair within d̂");
         }
     }
@@ -846,20 +861,7 @@ mod tests {
             listed > 0 && 4 * listed < found,
             "{listed} listed of {found} found"
         );
-        let mut everything = Candidates::default();
-        BroadPhase::default().proximity(system.surfaces(), &x0, 1.0, &mut everything);
-        let listed = |particles: [usize; 4]| {
-            Pairs::pairs(&system, &pairs.near).any(|p| p.particles == particles)
-        };
-        let mut close = 0;
-        for step in 0..=20 {
-            let t = f64::from(step) / 20.0;
-            let x: Vec<Vec3> = x0.iter().zip(&dx).map(|(x, d)| x + t * d).collect();
-            for pair in within(&system, &everything, &x, d_hat) {
-                close += 1;
-                assert!(listed(pair), "{pair:?} at τ = {t}");
-            }
-        }
+        let close = every_close_pair_listed(&system, &pairs, &x0, &dx, 20);
         assert!(close > 0, "the motion brings no pair within d̂");
     }
 
