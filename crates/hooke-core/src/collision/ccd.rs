@@ -30,7 +30,7 @@
 //! conservative; a pair needs that many only when it starts very close and
 //! moves fast relative to its gap).
 
-use super::distance::{edge_edge_closest, point_triangle_closest};
+use super::distance::{edge_edge_squared_distance, point_triangle_squared_distance};
 use crate::Vec3;
 
 /// The cap on ACCD's steps.
@@ -48,7 +48,7 @@ const MAX_ITERATIONS: usize = 1_000_000;
 #[must_use]
 pub fn point_triangle_ccd(x: [Vec3; 4], dx: [Vec3; 4], thickness: f64, keep: f64) -> f64 {
     accd(&x, &dx, 1, thickness, keep, |y| {
-        point_triangle_closest(y[0], y[1], y[2], y[3]).squared
+        point_triangle_squared_distance(y[0], y[1], y[2], y[3])
     })
 }
 
@@ -64,7 +64,7 @@ pub fn point_triangle_ccd(x: [Vec3; 4], dx: [Vec3; 4], thickness: f64, keep: f64
 #[must_use]
 pub fn edge_edge_ccd(x: [Vec3; 4], dx: [Vec3; 4], thickness: f64, keep: f64) -> f64 {
     accd(&x, &dx, 2, thickness, keep, |y| {
-        edge_edge_closest(y[0], y[1], y[2], y[3]).squared
+        edge_edge_squared_distance(y[0], y[1], y[2], y[3])
     })
 }
 
@@ -135,6 +135,7 @@ fn accd(
 mod tests {
     use super::*;
     use crate::collision::distance::tests::Rng;
+    use crate::collision::distance::{edge_edge_closest, point_triangle_closest};
 
     const KEEP: f64 = 0.1;
 

@@ -250,6 +250,83 @@ fn envelope(x: &[Vec3; 4], near: &Nearest) -> Derivatives {
     }
 }
 
+/// `|r|²` of [`point_segment`] for point `p` and segment `(j, k)`: the
+/// same arithmetic without the weights and the region (the sign of `r`
+/// does not change its square).
+fn point_segment_squared(p: Vec3, j: Vec3, k: Vec3) -> f64 {
+    let e = k - j;
+    let v = p - j;
+    let ee = e.norm_squared();
+    let t = if ee > 0.0 { v.dot(&e) / ee } else { 0.0 };
+    let r = if t > 0.0 && t < 1.0 {
+        v - e * t
+    } else if t <= 0.0 {
+        p - j
+    } else {
+        p - k
+    };
+    r.norm_squared()
+}
+
+/// The smallest of `squared` as [`nearest_of`] picks it: the first, then
+/// each later one that is smaller.
+fn least<const N: usize>(squared: [f64; N]) -> f64 {
+    let mut best = squared[0];
+    for &s in &squared[1..] {
+        if s < best {
+            best = s;
+        }
+    }
+    best
+}
+
+/// The squared distance of point `p` and triangle `(a, b, c)`: bit for bit
+/// [`point_triangle_closest`]`(p, a, b, c).squared`, without the closest
+/// points' weights (the cheap path of a search that discards most pairs).
+#[must_use]
+pub fn point_triangle_squared_distance(p: Vec3, a: Vec3, b: Vec3, c: Vec3) -> f64 {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let n = ab.cross(&ac);
+    let nn = n.norm_squared();
+    if nn > PARALLEL * ab.norm_squared() * ac.norm_squared() {
+        let beta = ap.cross(&ac).dot(&n) / nn;
+        let gamma = ab.cross(&ap).dot(&n) / nn;
+        let alpha = 1.0 - beta - gamma;
+        if alpha >= 0.0 && beta >= 0.0 && gamma >= 0.0 {
+            return (n * (n.dot(&ap) / nn)).norm_squared();
+        }
+    }
+    least([
+        point_segment_squared(p, a, b),
+        point_segment_squared(p, b, c),
+        point_segment_squared(p, c, a),
+    ])
+}
+
+/// The squared distance of segments `(a₀, a₁)` and `(b₀, b₁)`: bit for bit
+/// [`edge_edge_closest`]`(a₀, a₁, b₀, b₁).squared`, without the closest
+/// points' weights.
+#[must_use]
+pub fn edge_edge_squared_distance(a0: Vec3, a1: Vec3, b0: Vec3, b1: Vec3) -> f64 {
+    let (e0, e1) = (a1 - a0, b1 - b0);
+    let n = e0.cross(&e1);
+    let nn = n.norm_squared();
+    if nn > PARALLEL * e0.norm_squared() * e1.norm_squared() {
+        let w = b0 - a0;
+        let s = w.cross(&e1).dot(&n) / nn;
+        let t = w.cross(&e0).dot(&n) / nn;
+        if s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0 {
+            return (n * (-n.dot(&w) / nn)).norm_squared();
+        }
+    }
+    least([
+        point_segment_squared(a0, b0, b1),
+        point_segment_squared(a1, b0, b1),
+        point_segment_squared(b0, a0, a1),
+        point_segment_squared(b1, a0, a1),
+    ])
+}
+
 /// The closest points of point `p` and triangle `(a, b, c)`:
 /// `r = p − (α a + β b + γ c)`, `w = [1, −α, −β, −γ]`, `d² = |r|²`.
 ///
@@ -735,6 +812,47 @@ pub(crate) mod tests {
             assert!((pt(&stack(&x)).value - c.squared).abs() <= 1e-15 * c.squared);
             let c = edge_edge_closest(x[0], x[1], x[2], x[3]);
             assert!((ee(&stack(&x)).value - c.squared).abs() <= 1e-15 * c.squared);
+        }
+    }
+
+    /// The value-only distances are the closest points' squared distances
+    /// bit for bit, on general configurations and on the ones that take
+    /// each branch: every region of a triangle, skew, touching and
+    /// (nearly) parallel edges, and degenerate primitives.
+    #[test]
+    fn value_only_squared_distances_are_the_closest_points_bit_for_bit() {
+        let mut rng = Rng::new(9);
+        let same = |x: &[Vec3; 4]| {
+            let [p, a, b, c] = *x;
+            assert_eq!(
+                point_triangle_squared_distance(p, a, b, c).to_bits(),
+                point_triangle_closest(p, a, b, c).squared.to_bits(),
+                "{x:?}"
+            );
+            assert_eq!(
+                edge_edge_squared_distance(p, a, b, c).to_bits(),
+                edge_edge_closest(p, a, b, c).squared.to_bits(),
+                "{x:?}"
+            );
+        };
+        for i in 0..600 {
+            same(&[rng.vec3(1.0), rng.vec3(1.0), rng.vec3(1.0), rng.vec3(1.0)]);
+            same(&point_triangle_config(&mut rng, i % 3));
+            same(&skew_edges(&mut rng, 0.2));
+            same(&endpoint_edges(&mut rng, i % 2 == 0));
+            same(&near_parallel_edges(&mut rng, 0.0, true));
+            same(&near_parallel_edges(&mut rng, 1e-9, i % 2 == 0));
+            let [p, a, b] = [rng.vec3(1.0), rng.vec3(1.0), rng.vec3(1.0)];
+            let t = rng.uniform(-0.5, 1.5);
+            for x in [
+                [p, a, b, a + t * (b - a)],
+                [p, a, a, a],
+                [p, p, a, b],
+                [p, a, b, b],
+                [p, p, a, a],
+            ] {
+                same(&x);
+            }
         }
     }
 

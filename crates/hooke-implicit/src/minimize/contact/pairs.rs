@@ -19,8 +19,9 @@ use hooke_core::collision::barrier::{mollified_pair_barrier, pair_barrier};
 use hooke_core::collision::broad::{BroadPhase, Candidates};
 use hooke_core::collision::ccd::{edge_edge_ccd, point_triangle_ccd};
 use hooke_core::collision::distance::{
-    Derivatives, edge_edge_closest, edge_edge_mollifier, edge_edge_squared, mollifier_threshold,
-    point_triangle_closest, point_triangle_squared,
+    Derivatives, edge_edge_closest, edge_edge_mollifier, edge_edge_squared,
+    edge_edge_squared_distance, mollifier_threshold, point_triangle_closest,
+    point_triangle_squared, point_triangle_squared_distance,
 };
 use hooke_core::{Mat3, System, Vec3};
 
@@ -362,9 +363,9 @@ impl Pairs {
     pub(super) fn squared(pair: &Pair, x: &[Vec3]) -> f64 {
         let [p0, p1, p2, p3] = pair.positions(x);
         if pair.edges {
-            edge_edge_closest(p0, p1, p2, p3).squared
+            edge_edge_squared_distance(p0, p1, p2, p3)
         } else {
-            point_triangle_closest(p0, p1, p2, p3).squared
+            point_triangle_squared_distance(p0, p1, p2, p3)
         }
     }
 
