@@ -64,17 +64,17 @@ impl Integrator for Implicit {
         let mut report = StepReport::default();
         loop {
             let remaining = end - state.time();
-            // The last substep ends exactly at the caller's time. When the
-            // time left differs from `h` by rounding alone (`t + dt − t` is
-            // not `dt`), the step still spans `h`, so that steps of one
-            // size stay bit for bit the same size and what is kept per step
+            // The last substep ends exactly at the caller's time. It spans
+            // the time left only where that is shorter than `h` by more
+            // than rounding (`t + dt − t` is not `dt`): steps of one size
+            // stay bit for bit the same size, and what is kept per step
             // size (the quasi-Newton step's factored `H₀` and its carried
             // curvature pair) is kept.
             let last = h >= remaining * (1.0 - 1e-12);
-            let size = if !last || (remaining - h).abs() <= 1e-12 * h {
-                h
-            } else {
+            let size = if last && remaining < h * (1.0 - 1e-12) {
                 remaining
+            } else {
+                h
             };
             let at_floor = self.is_linearized() || size <= floor * (1.0 + 1e-12);
             let outcome = self.attempt(
