@@ -16,7 +16,7 @@
 use std::io::Write;
 use std::time::Instant;
 
-use hooke::implicit::{FastMassSpring, LinearSolver, Minimizer, PcgSettings};
+use hooke::implicit::{FastMassSpring, LinearSolver, Minimizer, PcgSettings, WeakSprings};
 use hooke::prelude::*;
 
 #[allow(dead_code)] // the bench uses one of the tests' helpers
@@ -26,11 +26,12 @@ mod common;
 const DT: f64 = 1.0 / 60.0;
 const STEPS: usize = 30;
 
-/// Backward Euler converged to `tolerance` with Cholesky (the reference,
-/// and the floor).
+/// Backward Euler converged to `tolerance` with Cholesky factoring the
+/// whole matrix (the reference, and the floor).
 fn converged(tolerance: f64) -> Implicit {
     Implicit::backward_euler()
         .with_solver(LinearSolver::Cholesky)
+        .with_weak_springs(WeakSprings::Kept)
         .with_newton(1000, tolerance)
         .unwrap()
 }
@@ -61,6 +62,13 @@ fn variants() -> Vec<Variant> {
     all.push((
         format!("Newton, default ({:e}, auto)", Implicit::NEWTON_TOLERANCE),
         Box::new(|| Box::new(Implicit::backward_euler())),
+    ));
+    all.push((
+        format!(
+            "Newton, default ({:e}, auto), weak springs routed",
+            Implicit::NEWTON_TOLERANCE
+        ),
+        Box::new(|| Box::new(Implicit::backward_euler().with_weak_springs(WeakSprings::Routed))),
     ));
     // A converged run, for the floor: how far apart converged steps end,
     // the buckling of the cloth amplifying the last digits of each step.

@@ -137,7 +137,7 @@ impl Implicit {
         let topology = topology(
             &mut self.topology,
             solver,
-            self.settings.amg_renewal,
+            (self.settings.amg_renewal, self.settings.weak_springs),
             system,
         )?;
         let solve = Solve {

@@ -3,6 +3,7 @@
 
 use hooke_core::{CompressedSprings, Integrator, Parameter, ParameterError};
 
+use crate::linear::cholesky::WeakSprings;
 use crate::linear::solver::{AmgRenewal, LinearSolver};
 use crate::step::comparison::Comparison;
 use crate::step::error_control::ErrorControl;
@@ -51,6 +52,23 @@ impl Implicit {
     #[must_use]
     pub fn with_amg_renewal(mut self, renewal: AmgRenewal) -> Self {
         self.settings.amg_renewal = renewal;
+        self.topology = None;
+        self.comparison = Comparison::default();
+        self
+    }
+
+    /// What a sparse Cholesky factorization ([`LinearSolver::Cholesky`], or
+    /// [`LinearSolver::Auto`]'s choice of it) does with weak springs
+    /// (default [`WeakSprings::Kept`]; [`WeakSprings::Routed`] carries them
+    /// on their paths in a sparser factor that preconditions CG).
+    ///
+    /// ```
+    /// use hooke_implicit::{Implicit, WeakSprings};
+    /// let routed = Implicit::backward_euler().with_weak_springs(WeakSprings::Routed);
+    /// ```
+    #[must_use]
+    pub fn with_weak_springs(mut self, weak: WeakSprings) -> Self {
+        self.settings.weak_springs = weak;
         self.topology = None;
         self.comparison = Comparison::default();
         self

@@ -66,6 +66,7 @@ mod tests {
 
     use super::*;
     use crate::linear::cg::PcgSettings;
+    use crate::linear::cholesky::WeakSprings;
     use crate::linear::solver::topology::topology;
     use crate::linear::solver::{AmgRenewal, LinearSolver};
 
@@ -82,8 +83,13 @@ mod tests {
         let ms = |t: f64| Duration::from_secs_f64(1e-3 * t);
         for ((elapsed, dt), kept) in [((20.0, 0.01), cholesky), ((15.0, 0.02), jacobi)] {
             let mut cached = None;
-            let topology =
-                topology(&mut cached, Some(cholesky), AmgRenewal::default(), &system).unwrap();
+            let topology = topology(
+                &mut cached,
+                Some(cholesky),
+                (AmgRenewal::default(), WeakSprings::default()),
+                &system,
+            )
+            .unwrap();
             topology.compare_with(jacobi);
             let mut comparison = Comparison::default();
             comparison.step_ended(Some(topology), ms(50.0), 0.01);

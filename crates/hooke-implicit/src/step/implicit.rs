@@ -2,6 +2,7 @@
 
 use hooke_core::{CompressedSprings, History};
 
+use crate::linear::cholesky::WeakSprings;
 use crate::linear::solver::topology::Topology;
 use crate::linear::solver::{AmgRenewal, LinearSolver};
 use crate::minimize::assembly::Assembler;
@@ -60,7 +61,10 @@ use crate::step::work::Work;
 /// With an iterative linear solver the Newton steps are solved inexactly,
 /// to the relative residual `η = min(0.1, ½ λ_rel)` of the last relative
 /// decrement where that is looser than the solver's own tolerance (an
-/// inexact Newton iteration; [`Implicit::with_inexact_newton`]).
+/// inexact Newton iteration; [`Implicit::with_inexact_newton`]); CG
+/// preconditioned by a Cholesky factor with weak springs routed
+/// ([`WeakSprings::Routed`](crate::WeakSprings)) stops at `min(η, 10⁻²)`,
+/// standing in for a direct solve.
 ///
 /// # Substeps: conditioning, rejection and the energy test
 ///
@@ -201,6 +205,7 @@ pub(crate) struct Settings {
     pub(crate) newton_tolerance: f64,
     pub(crate) inexact_newton: bool,
     pub(crate) amg_renewal: AmgRenewal,
+    pub(crate) weak_springs: WeakSprings,
     pub(crate) max_halvings: u32,
     pub(crate) strict: bool,
     pub(crate) compressed: CompressedSprings,
@@ -273,6 +278,7 @@ impl Implicit {
                 newton_tolerance: Self::NEWTON_TOLERANCE,
                 inexact_newton: true,
                 amg_renewal: AmgRenewal::default(),
+                weak_springs: WeakSprings::default(),
                 max_halvings: Self::MAX_HALVINGS,
                 strict: false,
                 compressed: CompressedSprings::Clamped,

@@ -8,13 +8,17 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
-use hooke_core::{Mat3, StepError, Vec3};
+use hooke_core::{Mat3, StepError, System, Vec3};
 
 use std::cell::RefCell;
 
 mod prediction;
+mod routes;
 use prediction::particle_order;
 pub(crate) use prediction::predicted_factor_entries;
+use routes::Carried;
+pub(crate) use routes::Routes;
+pub use routes::WeakSprings;
 
 use crate::linear::amg::fine::Neighbours;
 
@@ -86,6 +90,13 @@ pub enum FillOrdering {
 /// copies the matrix into its order at every factorization, a fifth of the
 /// factorization's time on the default scene; laid out in its order once,
 /// the matrix is factorized as it is.
+///
+/// Built with routes (`SparseCholesky::for_system` with
+/// [`WeakSprings::Routed`]), the pattern leaves out the weak springs that
+/// stiff ones carry (the `routes` module) and the factor is of the matrix
+/// `P ⪰ A` with their blocks moved onto their paths: half the entries on a
+/// cloth. It then preconditions CG on `A` ([`SparseCholesky::is_complete`]
+/// is false).
 pub struct SparseCholesky {
     col_ptr: Vec<u32>,
     row_idx: Vec<u32>,
@@ -110,6 +121,10 @@ pub struct SparseCholesky {
     /// Per particle, the diagonal added for the blocks left out
     /// ([`SparseCholesky::is_complete`]).
     compensation: Vec<f64>,
+    /// The weak springs whose blocks the factor carries on their paths.
+    routes: Routes,
+    /// What the routes add to the diagonal blocks and the legs' slots.
+    carried: Carried,
 }
 
 /// The sizes of a [`SparseCholesky`] ([`SparseCholesky::info`]): it has no
@@ -162,6 +177,36 @@ impl SparseCholesky {
     /// # Errors
     /// As [`SparseCholesky::new`].
     pub fn with_ordering(a: &BlockMatrix, ordering: FillOrdering) -> Result<Self, StepError> {
+        Self::with_routes(a, ordering, Routes::none(a.pattern()))
+    }
+
+    /// The factorization of matrices with the pattern of `a`, the springs
+    /// of `system`, which treats its weak springs as `weak` says.
+    ///
+    /// # Errors
+    /// As [`SparseCholesky::new`].
+    pub(crate) fn for_system(
+        a: &BlockMatrix,
+        system: &System,
+        weak: WeakSprings,
+    ) -> Result<Self, StepError> {
+        Self::with_routes(
+            a,
+            FillOrdering::default(),
+            Routes::of(system, a.pattern(), weak),
+        )
+    }
+
+    /// The layout and symbolic factorization for matrices with the pattern
+    /// of `a` less the routed springs of `routes`.
+    ///
+    /// # Errors
+    /// As [`SparseCholesky::new`].
+    pub(crate) fn with_routes(
+        a: &BlockMatrix,
+        ordering: FillOrdering,
+        routes: Routes,
+    ) -> Result<Self, StepError> {
         let (n, springs) = (a.rows(), a.pattern().slots());
         let dofs = 3 * n;
         let too_large = || StepError::SystemTooLarge {
@@ -176,7 +221,7 @@ impl SparseCholesky {
         // 3x3 blocks and a solve permutes whole particles.
         let blocks = a.pattern();
         let order = match ordering {
-            FillOrdering::Particles => particle_order(blocks).ok_or_else(too_large)?.0,
+            FillOrdering::Particles => particle_order(blocks, &routes).ok_or_else(too_large)?.0,
             FillOrdering::Scalar => (0..n as u32).collect(),
         };
         let mut particle_at = vec![0; n];
@@ -199,6 +244,7 @@ impl SparseCholesky {
                 neighbours
                     .of(q)
                     .iter()
+                    .filter(|&&(_, t)| !routes.is_routed(t as usize))
                     .map(|&(p, t)| (order[p as usize], t))
                     .filter(|&(l, _)| l as usize > k),
             );
@@ -237,6 +283,8 @@ impl SparseCholesky {
             par,
             complete: true,
             compensation: vec![0.0; n],
+            carried: Carried::new(&routes, n, springs),
+            routes,
         })
     }
 
@@ -355,12 +403,19 @@ impl SparseCholesky {
         }
     }
 
+    /// Whether the factor carries weak springs on their paths
+    /// ([`WeakSprings::Routed`]).
+    pub(crate) fn is_routed(&self) -> bool {
+        !self.routes.is_empty()
+    }
+
     /// Whether the last [`SparseCholesky::factorize`] factored the whole
-    /// matrix: every block beside the springs' (of a contact or a volume
-    /// element) joined two particles a spring joins too. Otherwise it
-    /// factored a matrix without the blocks `B` at `(i, j)` that lie
-    /// outside its pattern, each replaced by `‖B‖_F I` added to the
-    /// diagonal blocks of `i` and `j`, and
+    /// matrix: no weak spring is routed, and every block beside the
+    /// springs' (of a contact or a volume element) joined two particles a
+    /// spring joins too. Otherwise it factored a matrix above the whole
+    /// one — routed springs' blocks on their paths, and the blocks `B` at
+    /// `(i, j)` that lie outside its pattern each replaced by `‖B‖_F I`
+    /// added to the diagonal blocks of `i` and `j` — and
     /// [`SparseCholesky::solve_factored`] solves that one.
     ///
     /// Leaving a block out alone could make a positive definite matrix
@@ -374,12 +429,13 @@ impl SparseCholesky {
     /// whole one and positive definite whenever it is.
     #[must_use]
     pub fn is_complete(&self) -> bool {
-        self.complete
+        self.complete && !self.is_routed()
     }
 
     /// Copies the lower triangle of `S A S + I − S` into `values`: the
     /// blocks outside the springs' pattern left out and made up for on the
-    /// diagonal ([`SparseCholesky::is_complete`]).
+    /// diagonal, and the routed springs' blocks carried on their paths
+    /// (`Routes::carry`; [`SparseCholesky::is_complete`]).
     fn fill(&mut self, a: &BlockMatrix, filters: &[Filter]) {
         let sandwich = |block: Mat3, left: Filter, right: Filter| match (left, right) {
             (Filter::Free, Filter::Free) => block,
@@ -392,9 +448,23 @@ impl SparseCholesky {
             self.compensation[i] += norm;
             self.compensation[j] += norm;
         }
+        for route in self.routes.iter() {
+            if let Some(extra) = a
+                .extra_at_slots
+                .get(route.slot as usize)
+                .filter(|e| **e != Mat3::zeros())
+            {
+                let [i, j] = route.ends.map(|e| e as usize);
+                let norm = sandwich(*extra, filters[i], filters[j]).norm();
+                self.compensation[i] += norm;
+                self.compensation[j] += norm;
+            }
+        }
+        self.routes.carry(a, &mut self.carried);
         for (q, &filter) in filters.iter().enumerate() {
             let s = filter.matrix();
-            let block = sandwich(a.diagonal(q), filter, filter) + Mat3::identity() - s
+            let diagonal = a.diagonal(q) + self.carried.diagonal(q);
+            let block = sandwich(diagonal, filter, filter) + Mat3::identity() - s
                 + self.compensation[q] * s;
             let k = 3 * self.order[q] as usize;
             for c in 0..3 {
@@ -407,13 +477,17 @@ impl SparseCholesky {
         let pattern = a.pattern();
         for q in 0..pattern.rows() {
             for t in pattern.upper(q) {
+                if self.routes.is_routed(t) {
+                    continue;
+                }
                 let p = pattern.column(t);
                 // The slot's block at (q, p), or its transpose at (p, q),
                 // whichever lies below the diagonal in the order.
+                let block = a.slot_block(t) + self.carried.slot(t);
                 let block = if self.slot_upper[t] {
-                    sandwich(a.slot_block(t), filters[q], filters[p])
+                    sandwich(block, filters[q], filters[p])
                 } else {
-                    sandwich(a.slot_block(t).transpose(), filters[p], filters[q])
+                    sandwich(block.transpose(), filters[p], filters[q])
                 };
                 for (c, &start) in self.slot_columns[t].iter().enumerate() {
                     for r in 0..3 {

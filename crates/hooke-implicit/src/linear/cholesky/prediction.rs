@@ -9,12 +9,15 @@ use faer::sparse::linalg::amd;
 use crate::linear::amg::fine::Neighbours;
 use crate::linear::pattern::Pattern;
 
+use super::Routes;
+
 /// The approximate minimum degree ordering of the particle graph of
 /// `pattern` (one node per particle, an edge per pair of particles a
-/// spring joins): each particle's place in the order, and the number of
+/// spring joins, the springs `routes` carries on their paths left out):
+/// each particle's place in the order, and the number of
 /// off-diagonal entries of that graph's Cholesky factor, which AMD counts
 /// as it orders. `None` if the graph does not fit 32-bit indices.
-pub(crate) fn particle_order(pattern: &Pattern) -> Option<(Vec<u32>, usize)> {
+pub(crate) fn particle_order(pattern: &Pattern, routes: &Routes) -> Option<(Vec<u32>, usize)> {
     let n = pattern.rows();
     // Both triangles of the graph in compressed columns, each column's rows
     // in increasing order.
@@ -23,7 +26,13 @@ pub(crate) fn particle_order(pattern: &Pattern) -> Option<(Vec<u32>, usize)> {
     let mut row_idx = Vec::new();
     col_ptr.push(0u32);
     for q in 0..n {
-        row_idx.extend(neighbours.of(q).iter().map(|&(p, _)| p));
+        row_idx.extend(
+            neighbours
+                .of(q)
+                .iter()
+                .filter(|&&(_, t)| !routes.is_routed(t as usize))
+                .map(|&(p, _)| p),
+        );
         col_ptr.push(u32::try_from(row_idx.len()).ok()?);
     }
     drop(neighbours);
@@ -43,15 +52,15 @@ pub(crate) fn particle_order(pattern: &Pattern) -> Option<(Vec<u32>, usize)> {
 }
 
 /// The number of scalar entries of the Cholesky factor of a matrix with
-/// `pattern`'s blocks, predicted without factorizing: the factor of the
+/// `pattern`'s blocks less those `routes` carries on their paths, predicted without factorizing: the factor of the
 /// particle graph in its [`particle_order`] has `f` off-diagonal entries,
 /// and the block factor a 3x3 block for each (`9 f`) and the lower
 /// triangle of one per particle (`6 n`) —
 /// [`SparseCholesky`](super::SparseCholesky) factorizes in that order, so
 /// its factor has this size. `None` if the graph does not fit 32-bit
 /// indices.
-pub(crate) fn predicted_factor_entries(pattern: &Pattern) -> Option<usize> {
-    particle_order(pattern).map(|(_, off_diagonal)| 9 * off_diagonal + 6 * pattern.rows())
+pub(crate) fn predicted_factor_entries(pattern: &Pattern, routes: &Routes) -> Option<usize> {
+    particle_order(pattern, routes).map(|(_, off_diagonal)| 9 * off_diagonal + 6 * pattern.rows())
 }
 
 #[cfg(test)]
@@ -91,7 +100,11 @@ mod tests {
             }
         });
         for p in [chain, star] {
-            assert_eq!(predicted_factor_entries(&p), Some(9 * (n - 1) + 6 * n));
+            let routes = Routes::none(&p);
+            assert_eq!(
+                predicted_factor_entries(&p, &routes),
+                Some(9 * (n - 1) + 6 * n)
+            );
         }
     }
 
@@ -102,7 +115,8 @@ mod tests {
     fn predicted_factor_of_a_cloth_is_about_faers() {
         let system = Sheet::new(24).system().unwrap();
         let a = BlockMatrix::zeros(Pattern::new(&system).unwrap());
-        let predicted = predicted_factor_entries(a.pattern()).unwrap() as f64;
+        let predicted =
+            predicted_factor_entries(a.pattern(), &Routes::none(a.pattern())).unwrap() as f64;
         let actual = SparseCholesky::new(&a).unwrap().info().factor_nonzeros as f64;
         let ratio = predicted / actual;
         assert!((0.5..=2.0).contains(&ratio), "{predicted} against {actual}");

@@ -6,6 +6,7 @@ use super::*;
 use crate::linear::block::SymBlock;
 use crate::linear::filter::pin_filters;
 use crate::linear::pattern::Pattern;
+use hooke_core::System;
 
 /// A chain of four unit masses, springs joining 0–1, 1–2 and 2–3 only,
 /// with a contact-like term `c g gᵀ`, `g = (n, n, n, n)`, joining all
@@ -160,6 +161,123 @@ fn ordering_the_particles_fills_no_more() {
         scalar.info().factor_nonzeros,
     );
     assert!(p <= s, "{p} against {s}");
-    let predicted = predicted_factor_entries(a.pattern()).unwrap();
+    let predicted = predicted_factor_entries(a.pattern(), &Routes::none(a.pattern())).unwrap();
     assert!(predicted <= p, "{predicted} predicted, {p} held");
+}
+
+/// A flat `n × n` grid of unit spacing with stiff stretch springs (1000
+/// N/m) along rows and columns, shear springs (100 N/m) across cells and
+/// weak bending springs (1 N/m) two apart, and its backward-Euler matrix
+/// at rest for `h = 0.05` s, with the routes of its weak springs.
+fn routed_grid(n: usize) -> (System, BlockMatrix, Routes) {
+    use crate::minimize::assembly::Assembler;
+    use crate::minimize::linearization::Linearization;
+
+    let mut builder = SystemBuilder::new();
+    for row in 0..n {
+        for col in 0..n {
+            builder.particle(0.01, [col as f64, 0.0, row as f64]);
+        }
+    }
+    let at = |row: usize, col: usize| row * n + col;
+    for row in 0..n {
+        for col in 0..n {
+            for (down, across, k) in [
+                (0, 1, 1000.0),
+                (1, 0, 1000.0),
+                (1, 1, 100.0),
+                (0, 2, 1.0),
+                (2, 0, 1.0),
+            ] {
+                if row + down < n && col + across < n {
+                    builder.spring(at(row, col), at(row + down, col + across), k);
+                }
+            }
+            if row + 1 < n && col >= 1 {
+                builder.spring(at(row, col), at(row + 1, col - 1), 100.0);
+            }
+        }
+    }
+    let system = builder.build().unwrap();
+    let state = system.initial_state();
+    let mut work = Default::default();
+    let lin = Linearization::step_from(&state, 0.05, &mut work);
+    let mut a = BlockMatrix::zeros(Pattern::new(&system).unwrap());
+    let mut b = vec![Vec3::zeros(); system.particle_count()];
+    Assembler::default()
+        .assemble(&system, &lin, &mut a, &mut Default::default(), &mut b, 0.0)
+        .unwrap();
+    let routes = Routes::new(&system, a.pattern());
+    (system, a, routes)
+}
+
+/// Every bending spring of the grid, and nothing else, is routed through
+/// the particle between its ends, with equal weights.
+#[test]
+fn the_bending_springs_are_routed_through_their_middle_particles() {
+    let n = 6;
+    let (system, a, routes) = routed_grid(n);
+    let weak = |s: &hooke_core::Spring| s.stiffness < 10.0;
+    let bending = system.springs().iter().filter(|s| weak(s)).count();
+    assert_eq!(bending, 2 * n * (n - 2));
+    assert_eq!(routes.iter().count(), bending);
+    for route in routes.iter() {
+        let spring = &system.springs()[a.pattern().spring(route.slot as usize)];
+        assert!(weak(spring));
+        let [i, j] = route.ends.map(|e| e as usize);
+        assert_eq!(route.middle as usize, (i + j) / 2, "route {i}–{j}");
+        assert!(route.weights.iter().all(|w| (w - 2.0).abs() < 1e-12));
+    }
+}
+
+/// The routed factor holds half the grid's fill, and solves a matrix `P`
+/// at least the whole one `A` that equals it on affine velocity fields:
+/// for `b = A y`, the factor returns `y` itself where `y` is affine
+/// (`P y = A y`: every route's legs strain alike), and for any `y`,
+/// `bᵀP⁻¹b ≤ bᵀA⁻¹b = yᵀA y`.
+#[test]
+fn the_routed_factor_solves_a_majorizer_exact_on_affine_fields() {
+    let n = 12;
+    let (_, a, routes) = routed_grid(n);
+    let filters = vec![Filter::Free; n * n];
+    let whole = SparseCholesky::new(&a).unwrap();
+    let mut routed = SparseCholesky::with_routes(&a, FillOrdering::Particles, routes).unwrap();
+    let (kept, carried) = (whole.info().factor_nonzeros, routed.info().factor_nonzeros);
+    assert!(2 * carried < 3 * kept / 2, "{carried} against {kept}");
+    routed.factorize(&a, &filters).unwrap();
+    let positions: Vec<Vec3> = (0..n * n)
+        .map(|i| Vec3::new((i % n) as f64, 0.0, (i / n) as f64))
+        .collect();
+    let gradient = Mat3::new(0.3, -1.2, 0.5, 0.7, 0.2, -0.4, 1.1, 0.6, -0.9);
+    let affine: Vec<Vec3> = positions
+        .iter()
+        .map(|x| gradient * x + Vec3::new(0.1, -0.2, 0.3))
+        .collect();
+    let mut b = vec![Vec3::zeros(); n * n];
+    a.apply(&affine, &mut b);
+    let mut x = vec![Vec3::zeros(); n * n];
+    routed.solve_factored(&filters, &b, &mut x);
+    let size = affine.iter().map(|y| y.norm()).fold(0.0, f64::max);
+    for (i, (x, y)) in x.iter().zip(&affine).enumerate() {
+        assert!(
+            (x - y).norm() <= 1e-9 * size,
+            "particle {i}: {x:?} against {y:?}"
+        );
+    }
+    for k in 0..20 {
+        let y: Vec<Vec3> = (0..n * n)
+            .map(|i| {
+                let t = (7 * k + 3 * i) as f64;
+                Vec3::new(t.sin(), (1.3 * t).cos(), (0.7 * t + 1.0).sin())
+            })
+            .collect();
+        a.apply(&y, &mut b);
+        routed.solve_factored(&filters, &b, &mut x);
+        let factored: f64 = b.iter().zip(&x).map(|(b, x)| b.dot(x)).sum();
+        let exact: f64 = b.iter().zip(&y).map(|(b, y)| b.dot(y)).sum();
+        assert!(
+            factored > 0.0 && factored <= exact * (1.0 + 1e-12),
+            "y {k}: bᵀP⁻¹b = {factored:e}, bᵀA⁻¹b = {exact:e}"
+        );
+    }
 }

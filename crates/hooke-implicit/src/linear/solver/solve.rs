@@ -12,12 +12,22 @@ use crate::linear::cg::{self, PcgError, PcgInfo, PcgSettings, PcgWorkspace};
 use crate::linear::cholesky::SparseCholesky;
 
 /// The settings of the PCG solve that a Cholesky factor preconditions when
-/// contact couples particles outside the factor's pattern: to a relative
-/// residual of 10⁻¹⁰ (about a direct solve's), at most 200 iterations.
-const CONTACT_PCG: PcgSettings = PcgSettings {
+/// it is of a matrix above the step's (weak springs routed, or contact
+/// coupling particles outside the factor's pattern): to a relative
+/// residual of 10⁻¹⁰ (about a direct solve's), or Newton's forcing term
+/// where that is looser (at most [`FACTOR_FORCING`] with weak springs
+/// routed), at most 200 iterations.
+const FACTOR_PCG: PcgSettings = PcgSettings {
     tolerance: 1e-10,
     max_iterations: 200,
 };
+
+/// The loosest relative residual PCG preconditioned by a factor with weak
+/// springs routed stops at: the factor stands in for a direct solve, whose
+/// Newton steps are exact. Measured on the default scene with weak springs routed
+/// (`benches/README.md`): Newton's forcing term alone (up to 0.1) took
+/// 5.2 iterations a step and up to 83, a cap of `10⁻²` 4.98 and 40.
+const FACTOR_FORCING: f64 = 1e-2;
 
 /// What every linear solve of a step shares.
 #[derive(Clone, Copy)]
@@ -56,7 +66,7 @@ impl Solve<'_> {
         } = self;
         if topology.solver == LinearSolver::Auto {
             (topology.solver, topology.fallback, topology.runner_up) =
-                trial(topology, positions, workspace, time)?;
+                trial(topology, self.system, positions, workspace, time)?;
         }
         let Topology {
             matrix,
@@ -68,6 +78,7 @@ impl Solve<'_> {
             amg,
             fallback,
             runner_up,
+            weak_springs,
             ..
         } = topology;
         report.force_evaluations += 1;
@@ -206,7 +217,11 @@ impl Solve<'_> {
             *fallback = false;
             *runner_up = None;
             amg.clear();
-            *cholesky = Some(SparseCholesky::new(matrix)?);
+            *cholesky = Some(SparseCholesky::for_system(
+                matrix,
+                self.system,
+                *weak_springs,
+            )?);
         }
         if *solver == LinearSolver::Cholesky {
             let factor = cholesky
@@ -216,12 +231,18 @@ impl Solve<'_> {
             if factor.is_complete() {
                 factor.solve_factored(filters, b, x);
             } else {
-                // Blocks between particles in contact or in a volume
-                // element that no spring joins lie outside the factor's
-                // pattern: the factor of everything else (their diagonal
-                // blocks included) preconditions PCG on the whole matrix.
+                // The factor is of a matrix above the whole one: weak
+                // springs carried on their paths, or blocks between
+                // particles in contact or in a volume element that no
+                // spring joins left out of its pattern and made up for on
+                // the diagonal. It preconditions PCG on the whole matrix.
                 x.fill(Vec3::zeros());
-                let settings = CONTACT_PCG.loosened(forcing);
+                let forcing = if factor.is_routed() {
+                    forcing.min(FACTOR_FORCING)
+                } else {
+                    forcing
+                };
+                let settings = FACTOR_PCG.loosened(forcing);
                 let preconditioner = factor.preconditioner(filters);
                 pcg(
                     cg::solve(matrix, &preconditioner, filters, b, x, settings, workspace),
@@ -238,6 +259,7 @@ mod tests {
     use hooke_core::reference::Sheet;
 
     use super::*;
+    use crate::linear::cholesky::WeakSprings;
     use crate::linear::solver::renewal::AmgRenewal;
     use crate::linear::solver::topology::topology;
     use crate::minimize::assembly::Assembler;
@@ -262,7 +284,7 @@ mod tests {
         let topology = topology(
             &mut cached,
             Some(LinearSolver::Pcg(capped)),
-            AmgRenewal::default(),
+            (AmgRenewal::default(), WeakSprings::default()),
             &system,
         )
         .unwrap();

@@ -8,7 +8,7 @@ use super::auto_settings::AutoSettings;
 use super::renewal::{AmgRenewal, AmgState};
 use crate::PcgSettings;
 use crate::linear::cg::BlockJacobi;
-use crate::linear::cholesky::SparseCholesky;
+use crate::linear::cholesky::{SparseCholesky, WeakSprings};
 use crate::linear::filter::{Filter, pin_filters};
 use crate::linear::matrix::BlockMatrix;
 use crate::linear::pattern::Pattern;
@@ -28,6 +28,9 @@ pub(crate) struct Topology {
     /// Whether the next [`LinearSolver::LaggedCholesky`] solve factorizes.
     pub(super) refactor: bool,
     pub(super) amg: AmgState,
+    /// What a Cholesky factor built for [`LinearSolver::Cholesky`] does
+    /// with weak springs.
+    pub(super) weak_springs: WeakSprings,
     /// Whether an iterative solve that stops at its cap falls back to the
     /// factorization: when [`LinearSolver::Auto`] chose the iterative
     /// solver over an affordable factor.
@@ -120,13 +123,16 @@ impl Topology {
 /// The topology-dependent parts for `system`, rebuilt when the system
 /// changes or none were built yet (the step's history is keyed on the system
 /// too, so it restarts then). [`LinearSolver::Auto`] is resolved here by
-/// the system's size, or left to the trial. Without `solver` (a step that
+/// the system's size, or left to the trial. A factor for
+/// [`LinearSolver::Cholesky`] treats weak springs as `weak_springs` says;
+/// one for [`LinearSolver::LaggedCholesky`], a preconditioner across
+/// matrices already, keeps them. Without `solver` (a step that
 /// assembles no matrix), the matrix is its pattern alone
 /// ([`BlockMatrix::unassembled`]).
 pub(crate) fn topology<'a>(
     cached: &'a mut Option<Topology>,
     solver: Option<LinearSolver>,
-    renewal: AmgRenewal,
+    (renewal, weak_springs): (AmgRenewal, WeakSprings),
     system: &System,
 ) -> Result<&'a mut Topology, StepError> {
     if cached.as_ref().is_some_and(|t| t.system != system.id()) {
@@ -151,7 +157,11 @@ pub(crate) fn topology<'a>(
         };
         let cholesky = match solver {
             LinearSolver::Cholesky | LinearSolver::LaggedCholesky(_) => {
-                Some(SparseCholesky::new(&matrix)?)
+                let weak = match solver {
+                    LinearSolver::Cholesky => weak_springs,
+                    _ => WeakSprings::Kept,
+                };
+                Some(SparseCholesky::for_system(&matrix, system, weak)?)
             }
             _ => None,
         };
@@ -165,6 +175,7 @@ pub(crate) fn topology<'a>(
             cholesky,
             refactor: true,
             amg: AmgState::new(renewal),
+            weak_springs,
             fallback: false,
             runner_up: None,
         });
