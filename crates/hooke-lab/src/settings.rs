@@ -59,6 +59,7 @@ impl Settings {
             }
             IntegratorSpec::Implicit {
                 scheme,
+                weak_springs,
                 max_halvings,
                 strict,
                 error_control,
@@ -66,6 +67,7 @@ impl Settings {
             } => IntegratorSpec::Implicit {
                 scheme,
                 solver: self.solver,
+                weak_springs,
                 minimizer: self.minimizer,
                 newton_iterations: self.newton_iterations,
                 newton_tolerance: self.newton_tolerance,

@@ -2,7 +2,9 @@
 
 use hooke_core::{Integrator, ParameterError};
 use hooke_explicit::{DormandPrince, ExplicitMethod};
-use hooke_implicit::{ErrorControl, FastMassSpring, Implicit, LinearSolver, Minimizer, Scheme};
+use hooke_implicit::{
+    ErrorControl, FastMassSpring, Implicit, LinearSolver, Minimizer, Scheme, WeakSprings,
+};
 
 use crate::Method;
 
@@ -35,6 +37,8 @@ pub enum IntegratorSpec {
         scheme: Scheme,
         /// The linear solver, with its settings.
         solver: LinearSolver,
+        /// What a sparse Cholesky factorization does with weak springs.
+        weak_springs: WeakSprings,
         /// How each step's incremental potential is minimised: Newton's
         /// method, L-BFGS, or Baraff & Witkin's linearised step.
         minimizer: Minimizer,
@@ -113,6 +117,7 @@ impl IntegratorSpec {
         Self::Implicit {
             scheme,
             solver: LinearSolver::Auto,
+            weak_springs: WeakSprings::default(),
             minimizer: Minimizer::Newton,
             newton_iterations: Implicit::NEWTON_ITERATIONS,
             newton_tolerance: Implicit::NEWTON_TOLERANCE,
@@ -148,6 +153,7 @@ impl IntegratorSpec {
             Self::Implicit {
                 scheme,
                 solver,
+                weak_springs,
                 minimizer,
                 newton_iterations,
                 newton_tolerance,
@@ -157,6 +163,7 @@ impl IntegratorSpec {
             } => {
                 let implicit = Implicit::new(scheme)
                     .with_solver(solver)
+                    .with_weak_springs(weak_springs)
                     .with_newton(newton_iterations, newton_tolerance)?
                     .with_max_halvings(max_halvings)
                     .strict(strict);

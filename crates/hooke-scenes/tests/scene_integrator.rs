@@ -4,7 +4,7 @@
 mod common;
 
 use hooke_explicit::DormandPrince;
-use hooke_implicit::{ErrorControl, LinearSolver, Minimizer, PcgSettings};
+use hooke_implicit::{ErrorControl, LinearSolver, Minimizer, PcgSettings, WeakSprings};
 use hooke_scenes::{IntegratorSpec, Method};
 
 use common::{CLOTH, parse};
@@ -213,4 +213,33 @@ fn the_step_key_names_the_minimiser_and_history_its_memory() {
         };
         assert_eq!(minimizer, expected, "{keys}");
     }
+}
+
+#[test]
+fn weak_springs_are_read_for_the_factorization_and_checked() {
+    let weak = |text: &str| match parse(&format!("[integrator]\n{text}\n{CLOTH}"))
+        .map(|scene| scene.integrator)
+    {
+        Ok(IntegratorSpec::Implicit { weak_springs, .. }) => Ok(weak_springs),
+        Ok(other) => panic!("{other:?}"),
+        Err(e) => Err(e.to_string()),
+    };
+    assert_eq!(weak(""), Ok(WeakSprings::Kept));
+    assert_eq!(weak("weak_springs = \"routed\""), Ok(WeakSprings::Routed));
+    assert_eq!(
+        weak("solver = \"cholesky\"\nweak_springs = \"kept\""),
+        Ok(WeakSprings::Kept)
+    );
+    // A name it does not know: the error names the key and lists both.
+    let message = weak("weak_springs = \"bent\"").unwrap_err();
+    assert!(message.contains("integrator.weak_springs"), "{message}");
+    for name in WeakSprings::NAMES {
+        assert!(message.contains(&format!("\"{name}\"")), "{message}");
+    }
+    // Only a factorization has weak springs to route.
+    let message = weak("solver = \"amg\"\nweak_springs = \"routed\"").unwrap_err();
+    assert!(message.contains("integrator.weak_springs"), "{message}");
+    // Nor does an explicit method take it.
+    let message = weak("method = \"rk4\"\nweak_springs = \"routed\"").unwrap_err();
+    assert!(message.contains("weak_springs"), "{message}");
 }

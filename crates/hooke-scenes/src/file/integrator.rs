@@ -4,7 +4,7 @@
 use std::ops::Range;
 
 use hooke_core::{Parameter, ParameterError};
-use hooke_implicit::{ErrorControl, LinearSolver, Minimizer, PcgSettings, Scheme};
+use hooke_implicit::{ErrorControl, LinearSolver, Minimizer, PcgSettings, Scheme, WeakSprings};
 use toml::Spanned;
 
 use super::error::{ErrorKind, SceneFileError, Source};
@@ -85,6 +85,7 @@ pub(crate) fn integrator(
     };
     let implicit_only = [
         ("solver", t.solver.as_ref().map(Spanned::span)),
+        ("weak_springs", t.weak_springs.as_ref().map(Spanned::span)),
         ("step", t.step.as_ref().map(Spanned::span)),
         ("history", t.history.as_ref().map(Spanned::span)),
         ("carried_pairs", t.carried_pairs.as_ref().map(Spanned::span)),
@@ -207,18 +208,33 @@ fn implicit(
         .map_or(defaults.max_iterations(), |v| *v.get_ref());
     let solver = match &t.solver {
         None => LinearSolver::Auto,
-        Some(name) => LinearSolver::from_name(name.get_ref()).ok_or_else(|| {
-            src.invalid(
-                name.span(),
-                "integrator.solver",
-                format!("\"{}\"", name.get_ref()),
-                quoted_list(LinearSolver::NAMES),
-            )
-        })?,
+        Some(name) => named(
+            src,
+            ("solver", name),
+            LinearSolver::from_name,
+            &LinearSolver::NAMES,
+        )?,
     };
     if solver.pcg().is_none() {
         reject_pcg()?;
     }
+    let weak_springs = match &t.weak_springs {
+        None => WeakSprings::default(),
+        Some(name) if !matches!(solver, LinearSolver::Auto | LinearSolver::Cholesky) => {
+            return Err(src.invalid(
+                name.span(),
+                "integrator.weak_springs",
+                format!("`weak_springs` with solver \"{}\"", solver.name()),
+                "`weak_springs` only with solver \"auto\" or \"cholesky\"",
+            ));
+        }
+        Some(name) => named(
+            src,
+            ("weak_springs", name),
+            WeakSprings::from_name,
+            &WeakSprings::NAMES,
+        )?,
+    };
     let history = t
         .history
         .as_ref()
@@ -291,6 +307,7 @@ fn implicit(
     Ok(IntegratorSpec::Implicit {
         scheme,
         solver,
+        weak_springs,
         minimizer,
         newton_iterations: t
             .newton_iterations
@@ -303,6 +320,24 @@ fn implicit(
             .map_or(max_halvings, |v| *v.get_ref()),
         strict: t.strict.as_ref().map_or(strict, |v| *v.get_ref()),
         error_control,
+    })
+}
+
+/// The setting the value `name` of the key `integrator.key` names, found
+/// by `find`; otherwise an error at it listing the names there are.
+fn named<T>(
+    src: &Source<'_>,
+    (key, name): (&str, &Spanned<String>),
+    find: impl Fn(&str) -> Option<T>,
+    names: &[&str],
+) -> Result<T, SceneFileError> {
+    find(name.get_ref()).ok_or_else(|| {
+        src.invalid(
+            name.span(),
+            format!("integrator.{key}"),
+            format!("\"{}\"", name.get_ref()),
+            quoted_list(names.iter().copied()),
+        )
     })
 }
 

@@ -42,6 +42,7 @@ pub(crate) struct Simulation {
 pub(crate) struct IntegratorTable {
     pub(crate) method: Option<Spanned<String>>,
     pub(crate) solver: Option<Spanned<String>>,
+    pub(crate) weak_springs: Option<Spanned<String>>,
     pub(crate) step: Option<Spanned<String>>,
     pub(crate) history: Option<Spanned<usize>>,
     pub(crate) carried_pairs: Option<Spanned<usize>>,

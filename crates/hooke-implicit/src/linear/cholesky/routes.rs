@@ -60,8 +60,38 @@ pub enum WeakSprings {
     /// dominates and contact couples no particles outside the pattern (the
     /// default scene: 0.82 of the stepping time); slower where
     /// self-contact makes CG run on every solve anyway (the cloth-pile
-    /// scene: 1.5 times). `benches/README.md` has the measurements.
+    /// scene: 1.5 times, 1.8 in wall time). `benches/README.md` has the
+    /// measurements; scene files say `weak_springs = "routed"`.
     Routed,
+}
+
+impl WeakSprings {
+    /// Both settings as scene files spell them, in the order of
+    /// [`WeakSprings::name`].
+    pub const NAMES: [&'static str; 2] = ["kept", "routed"];
+
+    /// The setting's name: `"kept"` or `"routed"`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        Self::NAMES[match self {
+            Self::Kept => 0,
+            Self::Routed => 1,
+        }]
+    }
+
+    /// The setting called `name` (see [`WeakSprings::NAMES`]).
+    ///
+    /// ```
+    /// use hooke_implicit::WeakSprings;
+    /// assert_eq!(WeakSprings::from_name("routed"), Some(WeakSprings::Routed));
+    /// assert_eq!(WeakSprings::from_name("bent"), None);
+    /// ```
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        [Self::Kept, Self::Routed]
+            .into_iter()
+            .find(|weak| weak.name() == name)
+    }
 }
 
 /// A spring is routed only if the stiffness it adds to each leg,
