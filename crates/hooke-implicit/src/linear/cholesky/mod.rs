@@ -22,7 +22,7 @@ pub use routes::WeakSprings;
 
 use crate::linear::amg::fine::Neighbours;
 
-use crate::linear::cg::Preconditioner;
+use crate::linear::cg::{self, PcgError, PcgInfo, PcgSettings, PcgWorkspace, Preconditioner};
 use crate::linear::filter::Filter;
 use crate::linear::matrix::BlockMatrix;
 
@@ -177,7 +177,7 @@ impl SparseCholesky {
     /// # Errors
     /// As [`SparseCholesky::new`].
     pub fn with_ordering(a: &BlockMatrix, ordering: FillOrdering) -> Result<Self, StepError> {
-        Self::with_routes(a, ordering, Routes::none(a.pattern()))
+        Self::with_routes(a, ordering, Routes::default())
     }
 
     /// The factorization of matrices with the pattern of `a`, the springs
@@ -366,6 +366,35 @@ impl SparseCholesky {
         }
     }
 
+    /// Solves the filtered system of `a` with the last factor: directly
+    /// where it is of the whole matrix ([`SparseCholesky::is_complete`],
+    /// `None`), otherwise by PCG on `a` from zero, preconditioned by it, to
+    /// `settings` (PCG's outcome).
+    pub(crate) fn solve_filtered(
+        &mut self,
+        (a, filters): (&BlockMatrix, &[Filter]),
+        b: &[Vec3],
+        x: &mut [Vec3],
+        settings: PcgSettings,
+        workspace: &mut PcgWorkspace,
+    ) -> Option<Result<PcgInfo, PcgError>> {
+        if self.is_complete() {
+            self.solve_factored(filters, b, x);
+            return None;
+        }
+        x.fill(Vec3::zeros());
+        let preconditioner = self.preconditioner(filters);
+        Some(cg::solve(
+            a,
+            &preconditioner,
+            filters,
+            b,
+            x,
+            settings,
+            workspace,
+        ))
+    }
+
     /// The last factor as a PCG preconditioner for the filters `filters`:
     /// `P⁻¹ r = S L⁻ᵀ L⁻¹ S r`, symmetric positive definite whatever matrix
     /// was factorized, and exact for that one.
@@ -443,27 +472,26 @@ impl SparseCholesky {
         };
         self.compensation.fill(0.0);
         self.complete = a.extra_within_pattern();
-        for (i, j, block) in a.extra_outside_pattern() {
+        // Contact and element blocks at a routed spring's slot leave the
+        // pattern with it.
+        let at_routed = self.routes.iter().filter_map(|route| {
+            let [i, j] = route.ends.map(|e| e as usize);
+            a.extra_at_slots
+                .get(route.slot as usize)
+                .map(|&block| (i, j, block))
+        });
+        for (i, j, block) in a.extra_outside_pattern().chain(at_routed) {
             let norm = sandwich(block, filters[i], filters[j]).norm();
             self.compensation[i] += norm;
             self.compensation[j] += norm;
         }
-        for route in self.routes.iter() {
-            if let Some(extra) = a
-                .extra_at_slots
-                .get(route.slot as usize)
-                .filter(|e| **e != Mat3::zeros())
-            {
-                let [i, j] = route.ends.map(|e| e as usize);
-                let norm = sandwich(*extra, filters[i], filters[j]).norm();
-                self.compensation[i] += norm;
-                self.compensation[j] += norm;
-            }
-        }
         self.routes.carry(a, &mut self.carried);
         for (q, &filter) in filters.iter().enumerate() {
             let s = filter.matrix();
-            let diagonal = a.diagonal(q) + self.carried.diagonal(q);
+            let mut diagonal = a.diagonal(q);
+            if let Some(carried) = self.carried.diagonal(q) {
+                diagonal += carried;
+            }
             let block = sandwich(diagonal, filter, filter) + Mat3::identity() - s
                 + self.compensation[q] * s;
             let k = 3 * self.order[q] as usize;
@@ -483,7 +511,10 @@ impl SparseCholesky {
                 let p = pattern.column(t);
                 // The slot's block at (q, p), or its transpose at (p, q),
                 // whichever lies below the diagonal in the order.
-                let block = a.slot_block(t) + self.carried.slot(t);
+                let mut block = a.slot_block(t);
+                if let Some(carried) = self.carried.slot(t) {
+                    block += carried;
+                }
                 let block = if self.slot_upper[t] {
                     sandwich(block, filters[q], filters[p])
                 } else {

@@ -110,27 +110,21 @@ pub(crate) struct Route {
     pub(crate) weights: [f64; 2],
 }
 
-/// The routed springs of a system, by slot.
+/// The routed springs of a system, by slot (the default: none).
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Routes {
     routes: Vec<Route>,
+    /// Per slot, whether its spring is routed; empty without routes.
     routed: Vec<bool>,
 }
 
 impl Routes {
-    /// No spring routed.
-    pub(crate) fn none(pattern: &Pattern) -> Self {
-        Self {
-            routes: Vec::new(),
-            routed: vec![false; pattern.slots()],
-        }
-    }
-
-    /// The routes `weak` asks for in `system`'s `pattern`.
+    /// The routes `weak` asks for in `system`'s `pattern` (none, holding
+    /// nothing, for [`WeakSprings::Kept`]).
     pub(crate) fn of(system: &System, pattern: &Pattern, weak: WeakSprings) -> Self {
         match weak {
             WeakSprings::Routed => Self::new(system, pattern),
-            WeakSprings::Kept => Self::none(pattern),
+            WeakSprings::Kept => Self::default(),
         }
     }
 
@@ -208,7 +202,7 @@ impl Routes {
     /// Whether the spring in `slot` is routed.
     #[inline]
     pub(crate) fn is_routed(&self, slot: usize) -> bool {
-        self.routed[slot]
+        self.routed.get(slot).copied().unwrap_or(false)
     }
 
     /// The routes, by slot.
@@ -223,10 +217,11 @@ impl Routes {
 
     /// Fills `carried` with what moving the routed springs' blocks of `a`
     /// onto their paths adds: each block `K` leaves its ends' diagonals
-    /// and its slot, and its positive part `K⁺` (the exact blocks of
-    /// compressed springs are indefinite, and a path bounds only a
-    /// positive semidefinite block) joins the legs' — `(1 + t) K⁺` on
-    /// `(i, m)`, `(1 + 1/t) K⁺` on `(m, j)`, their diagonals included.
+    /// and its slot, and `K⁺ ⪰ K`, `K` raised to positive semidefinite
+    /// ([`raised_semidefinite`]: the exact blocks of compressed springs
+    /// are indefinite, and a path bounds only a positive semidefinite
+    /// block), joins the legs' — `(1 + t) K⁺` on `(i, m)`, `(1 + 1/t) K⁺`
+    /// on `(m, j)`, their diagonals included.
     pub(crate) fn carry(&self, a: &BlockMatrix, carried: &mut Carried) {
         if self.is_empty() {
             return;
@@ -235,7 +230,7 @@ impl Routes {
         carried.slots.fill(Mat3::zeros());
         for route in &self.routes {
             let own = a.springs[route.slot as usize].to_mat3();
-            let block = positive_part(own);
+            let block = raised_semidefinite(own);
             let [i, j] = route.ends.map(|e| e as usize);
             let [wi, wj] = route.weights;
             carried.diagonal[i] += wi * block - own;
@@ -268,23 +263,26 @@ impl Carried {
         }
     }
 
-    /// What the routes add to particle `i`'s diagonal block.
+    /// What the routes add to particle `i`'s diagonal block (`None`
+    /// without routes).
     #[inline]
-    pub(crate) fn diagonal(&self, i: usize) -> Mat3 {
-        self.diagonal.get(i).copied().unwrap_or_else(Mat3::zeros)
+    pub(crate) fn diagonal(&self, i: usize) -> Option<&Mat3> {
+        self.diagonal.get(i)
     }
 
-    /// What the routes add to the block of `slot`.
+    /// What the routes add to the block of `slot` (`None` without routes).
     #[inline]
-    pub(crate) fn slot(&self, slot: usize) -> Mat3 {
-        self.slots.get(slot).copied().unwrap_or_else(Mat3::zeros)
+    pub(crate) fn slot(&self, slot: usize) -> Option<&Mat3> {
+        self.slots.get(slot)
     }
 }
 
 /// `K + max(0, −λ_min(K)) I`: the symmetric block `K` itself where it is
 /// positive semidefinite (every principal minor non-negative), otherwise
 /// raised by its most negative eigenvalue (in closed form, Smith 1961).
-fn positive_part(k: Mat3) -> Mat3 {
+/// For a spring's block `k∥ d dᵀ + k⊥ (I − d dᵀ)` with `k⊥ < 0` that is
+/// `(k∥ − k⊥) d dᵀ`, at least the clamped block `k∥ d dᵀ`.
+fn raised_semidefinite(k: Mat3) -> Mat3 {
     let minors = [
         k[(0, 0)],
         k[(1, 1)],

@@ -161,7 +161,7 @@ fn ordering_the_particles_fills_no_more() {
         scalar.info().factor_nonzeros,
     );
     assert!(p <= s, "{p} against {s}");
-    let predicted = predicted_factor_entries(a.pattern(), &Routes::none(a.pattern())).unwrap();
+    let predicted = predicted_factor_entries(a.pattern(), &Routes::default()).unwrap();
     assert!(predicted <= p, "{predicted} predicted, {p} held");
 }
 

@@ -85,22 +85,7 @@ pub(super) fn trial(
         // tolerance: at its cap or not, that is what a solve spends.
         let ((), elapsed) = second_run(|| {
             factor.factorize(matrix, filters)?;
-            if factor.is_complete() {
-                factor.solve_factored(filters, &r, &mut y);
-            } else {
-                y.fill(Vec3::zeros());
-                let preconditioner = factor.preconditioner(filters);
-                cg::solve(
-                    matrix,
-                    &preconditioner,
-                    filters,
-                    &r,
-                    &mut y,
-                    settings,
-                    workspace,
-                )
-                .ok();
-            }
+            factor.solve_filtered((matrix, filters), &r, &mut y, settings, workspace);
             Ok(())
         })
         .map_err(|e: CholeskyError| e.at(time))?;

@@ -228,26 +228,21 @@ impl Solve<'_> {
                 .as_mut()
                 .expect("built with the topology for this solver");
             factor.factorize(matrix, filters).map_err(|e| e.at(time))?;
-            if factor.is_complete() {
-                factor.solve_factored(filters, b, x);
+            // A factor of a matrix above the whole one — weak springs
+            // carried on their paths, or blocks between particles in
+            // contact or in a volume element that no spring joins left out
+            // of its pattern and made up for on the diagonal —
+            // preconditions PCG on the whole matrix.
+            let forcing = if factor.is_routed() {
+                forcing.min(FACTOR_FORCING)
             } else {
-                // The factor is of a matrix above the whole one: weak
-                // springs carried on their paths, or blocks between
-                // particles in contact or in a volume element that no
-                // spring joins left out of its pattern and made up for on
-                // the diagonal. It preconditions PCG on the whole matrix.
-                x.fill(Vec3::zeros());
-                let forcing = if factor.is_routed() {
-                    forcing.min(FACTOR_FORCING)
-                } else {
-                    forcing
-                };
-                let settings = FACTOR_PCG.loosened(forcing);
-                let preconditioner = factor.preconditioner(filters);
-                pcg(
-                    cg::solve(matrix, &preconditioner, filters, b, x, settings, workspace),
-                    report,
-                )?;
+                forcing
+            };
+            let settings = FACTOR_PCG.loosened(forcing);
+            if let Some(solved) =
+                factor.solve_filtered((matrix, filters), b, x, settings, workspace)
+            {
+                pcg(solved, report)?;
             }
         }
         Ok(())

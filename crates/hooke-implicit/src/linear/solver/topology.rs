@@ -156,13 +156,10 @@ pub(crate) fn topology<'a>(
             solver => solver,
         };
         let cholesky = match solver {
-            LinearSolver::Cholesky | LinearSolver::LaggedCholesky(_) => {
-                let weak = match solver {
-                    LinearSolver::Cholesky => weak_springs,
-                    _ => WeakSprings::Kept,
-                };
-                Some(SparseCholesky::for_system(&matrix, system, weak)?)
+            LinearSolver::Cholesky => {
+                Some(SparseCholesky::for_system(&matrix, system, weak_springs)?)
             }
+            LinearSolver::LaggedCholesky(_) => Some(SparseCholesky::new(&matrix)?),
             _ => None,
         };
         let filters = pin_filters(system);
