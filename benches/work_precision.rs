@@ -90,15 +90,19 @@ fn variants() -> Vec<Variant> {
         ));
     }
     // Quasi-Newton rows: a fixed number of iterations a step (each step
-    // accepted after them) or a tolerance, with the minimiser and the
-    // solver that applies H₀⁻¹.
-    let mut quasi = |label: String, stop: Stop, minimizer: Minimizer, solver: LinearSolver| {
+    // accepted after them) or a tolerance, with the minimiser, the solver
+    // that applies H₀⁻¹ and where H₀'s weak springs go (routed by default).
+    let mut quasi_with = |label: String, stop: Stop, minimizer, solver, weak: Option<_>| {
         all.push((
             label,
             Box::new(move || {
                 let integrator = Implicit::backward_euler()
                     .with_minimizer(minimizer)
                     .with_solver(solver);
+                let integrator = match weak {
+                    Some(weak) => integrator.with_weak_springs(weak),
+                    None => integrator,
+                };
                 Box::new(match stop {
                     Stop::Iterations(k) => integrator
                         .with_newton(k, 1e-12)
@@ -110,6 +114,20 @@ fn variants() -> Vec<Variant> {
         ));
     };
     let (default, auto) = (Minimizer::quasi_newton(), LinearSolver::Auto);
+    // H₀ as fast mass-spring's matrix, every spring in place (the default
+    // before H₀ routed its weak springs).
+    let kept = Some(WeakSprings::Kept);
+    for k in [5, 10, 30] {
+        let label = format!("quasi-Newton, {k} iterations, H₀ kept");
+        quasi_with(label, Stop::Iterations(k), default, auto, kept);
+    }
+    for tol in [1e-2, 3e-3, 1e-3] {
+        let label = format!("quasi-Newton, {tol:e}, H₀ kept");
+        quasi_with(label, Stop::Tolerance(tol), default, auto, kept);
+    }
+    let mut quasi = |label, stop, minimizer, solver| {
+        quasi_with(label, stop, minimizer, solver, None);
+    };
     for k in [4, 5, 6, 7, 10, 15, 30] {
         quasi(
             format!("quasi-Newton, {k} iterations"),
@@ -118,7 +136,7 @@ fn variants() -> Vec<Variant> {
             auto,
         );
     }
-    for tol in [1e-1, 3e-2, 1e-2, 3e-3, 1e-3] {
+    for tol in [1e-1, 3e-2, 1e-2, 3e-3, 2e-3, 1e-3] {
         quasi(
             format!("quasi-Newton, {tol:e}"),
             Stop::Tolerance(tol),

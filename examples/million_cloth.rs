@@ -7,19 +7,21 @@
 //! process's peak resident memory (`VmHWM` of `/proc/self/status`) per
 //! particle.
 //!
-//! `cargo run --release --example million_cloth -- [N] [STEPS] [STEP] [TOLERANCE] [SELF] [SOLVER]`
+//! `cargo run --release --example million_cloth -- [N] [STEPS] [STEP] [TOLERANCE] [SELF] [SOLVER] [WEAK]`
 //!
 //! `N` = 1000 (a million particles) and `STEPS` = 2 by default; `STEP` is
 //! `newton` (the default) or `quasi-newton`, `TOLERANCE` the relative
 //! Newton tolerance (the integrator's default if not given), `SELF` `on`
 //! (the default) or `off` for the cloth's self-collision, `SOLVER` the
 //! linear solver's name (`auto` by default; for the quasi-Newton step,
-//! `cholesky` factors `H₀` and `amg` applies it by multigrid).
+//! `cholesky` factors `H₀` and `amg` applies it by multigrid), `WEAK`
+//! `kept` or `routed` for where the bending springs go in the matrix a
+//! step factorizes (each step's default if not given).
 #![allow(clippy::print_stdout)] // printing the measurements is this program's job
 
 use std::time::Instant;
 
-use hooke::implicit::{Implicit, LinearSolver, Minimizer};
+use hooke::implicit::{Implicit, LinearSolver, Minimizer, WeakSprings};
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Mass, Springs};
 
@@ -46,6 +48,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             LinearSolver::from_name(&name).ok_or_else(|| format!("unknown solver {name:?}"))?
         }
     };
+    let weak = match args.next() {
+        None => None,
+        Some(name) => Some(
+            WeakSprings::from_name(&name)
+                .ok_or_else(|| format!("WEAK is kept or routed, not {name:?}"))?,
+        ),
+    };
     let system = Cloth::grid(side, side)
         .mass(Mass::Total(1.0))
         .stretch(Springs::per_spring(5000.0).damping(0.05))
@@ -57,10 +66,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .system([0.0, -9.81, 0.0])?;
     let particles = system.particle_count();
     let mut state = system.initial_state();
-    let mut integrator = Implicit::backward_euler()
+    let integrator = Implicit::backward_euler()
         .with_minimizer(minimizer)
         .with_solver(solver)
         .with_newton(Implicit::NEWTON_ITERATIONS, tolerance)?;
+    let mut integrator = match weak {
+        Some(weak) => integrator.with_weak_springs(weak),
+        None => integrator,
+    };
     for step in 0..steps {
         let started = Instant::now();
         let report = integrator.step(&system, &mut state, 1.0 / 60.0)?;

@@ -37,8 +37,9 @@ pub enum IntegratorSpec {
         scheme: Scheme,
         /// The linear solver, with its settings.
         solver: LinearSolver,
-        /// What a sparse Cholesky factorization does with weak springs.
-        weak_springs: WeakSprings,
+        /// Where weak springs go in the matrix a step factorizes (`None`:
+        /// each minimiser's default, see `Implicit::with_weak_springs`).
+        weak_springs: Option<WeakSprings>,
         /// How each step's incremental potential is minimised: Newton's
         /// method, L-BFGS, or Baraff & Witkin's linearised step.
         minimizer: Minimizer,
@@ -117,7 +118,7 @@ impl IntegratorSpec {
         Self::Implicit {
             scheme,
             solver: LinearSolver::Auto,
-            weak_springs: WeakSprings::default(),
+            weak_springs: None,
             minimizer: Minimizer::Newton,
             newton_iterations: Implicit::NEWTON_ITERATIONS,
             newton_tolerance: Implicit::NEWTON_TOLERANCE,
@@ -161,9 +162,12 @@ impl IntegratorSpec {
                 strict,
                 error_control,
             } => {
-                let implicit = Implicit::new(scheme)
-                    .with_solver(solver)
-                    .with_weak_springs(weak_springs)
+                let implicit = Implicit::new(scheme).with_solver(solver);
+                let implicit = match weak_springs {
+                    Some(weak) => implicit.with_weak_springs(weak),
+                    None => implicit,
+                };
+                let implicit = implicit
                     .with_newton(newton_iterations, newton_tolerance)?
                     .with_max_halvings(max_halvings)
                     .strict(strict);

@@ -10,7 +10,6 @@ use hooke_core::{Path as Motion, Shape, Vec3};
 use hooke_explicit::DormandPrince;
 use hooke_implicit::{
     ErrorControl, FastMassSpring, Implicit, LinearSolver, Minimizer, PcgSettings, Scheme,
-    WeakSprings,
 };
 use hooke_scenes::file::{self, ErrorKind};
 use hooke_scenes::{IntegratorSpec, builtin};
@@ -267,7 +266,7 @@ fn a_cloth_file_says_what_the_scene_holds() {
             scheme: Scheme::Bdf2,
             minimizer: Minimizer::Newton,
             solver: LinearSolver::Pcg(PcgSettings::new(1e-7, 300).unwrap()),
-            weak_springs: WeakSprings::Kept,
+            weak_springs: None,
             newton_iterations: 4,
             newton_tolerance: Implicit::NEWTON_TOLERANCE,
             max_halvings: Implicit::MAX_HALVINGS,

@@ -224,11 +224,20 @@ fn weak_springs_are_read_for_the_factorization_and_checked() {
         Ok(other) => panic!("{other:?}"),
         Err(e) => Err(e.to_string()),
     };
-    assert_eq!(weak(""), Ok(WeakSprings::Kept));
-    assert_eq!(weak("weak_springs = \"routed\""), Ok(WeakSprings::Routed));
+    assert_eq!(weak(""), Ok(None));
+    assert_eq!(
+        weak("weak_springs = \"routed\""),
+        Ok(Some(WeakSprings::Routed))
+    );
     assert_eq!(
         weak("solver = \"cholesky\"\nweak_springs = \"kept\""),
-        Ok(WeakSprings::Kept)
+        Ok(Some(WeakSprings::Kept))
+    );
+    // The quasi-Newton step's H₀ is factorized or a hierarchy's, whatever
+    // the solver.
+    assert_eq!(
+        weak("step = \"quasi-newton\"\nsolver = \"amg\"\nweak_springs = \"kept\""),
+        Ok(Some(WeakSprings::Kept))
     );
     // A name it does not know: the error names the key and lists both.
     let message = weak("weak_springs = \"bent\"").unwrap_err();
@@ -236,7 +245,7 @@ fn weak_springs_are_read_for_the_factorization_and_checked() {
     for name in WeakSprings::NAMES {
         assert!(message.contains(&format!("\"{name}\"")), "{message}");
     }
-    // Only a factorization has weak springs to route.
+    // Only a factorization has weak springs to route in Newton's matrix.
     let message = weak("solver = \"amg\"\nweak_springs = \"routed\"").unwrap_err();
     assert!(message.contains("integrator.weak_springs"), "{message}");
     // Nor does an explicit method take it.

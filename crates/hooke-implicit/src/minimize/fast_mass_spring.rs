@@ -6,6 +6,7 @@ use hooke_core::{
     Integrator, Parameter, ParameterError, State, StepBuffers, StepError, StepReport, System, Vec3,
 };
 
+use crate::WeakSprings;
 use crate::linear::solver::LinearSolver;
 use crate::minimize::laplacian::{Inverse, Laplacian};
 
@@ -145,7 +146,9 @@ impl Integrator for FastMassSpring {
                     system,
                     weights,
                     (dt.to_bits(), &[]),
-                    Inverse::Factor,
+                    // Its fixed point minimises Φ only with each spring's
+                    // own term in the matrix, as in its right-hand side.
+                    (Inverse::Factor, WeakSprings::Kept),
                     state.time(),
                 )?);
             }

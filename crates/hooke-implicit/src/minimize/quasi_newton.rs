@@ -14,10 +14,18 @@
 //! spring's stiffness block `kₛ[d dᵀ + (1 − L/l)(I − d dᵀ)]` and damping
 //! block `cₛ d dᵀ` replaced by their upper bounds `kₛ I` and `cₛ I` — the
 //! matrix of fast mass-spring, so it depends on the topology, the moduli
-//! and `βh` only and is factorized once per step size. Where its factor
-//! would be large, one V-cycle of smoothed-aggregation multigrid on it
-//! (`linear::amg::scalar`) stands for `H₀⁻¹` instead: a fixed symmetric
-//! positive-definite operator, as the two-loop recursion needs. An iteration costs
+//! and `βh` only and is factorized once per step size. By default the
+//! factored `H₀` carries each weak spring of `L` (a cloth's bending
+//! spring, joined to its ends' common neighbour by two springs ten times
+//! stiffer) on those two instead
+//! ([`WeakSprings::Routed`](crate::WeakSprings); the `laplacian` module has
+//! the bound): `H₀` is then larger still, equal to the whole one on
+//! uniform strain, and its factor has half the entries, so an iteration
+//! costs less for about the same progress (`benches/README.md`). Where the
+//! whole matrix's factor would be large, one V-cycle of smoothed-aggregation
+//! multigrid on the whole matrix (`linear::amg::scalar`) stands for `H₀⁻¹`
+//! instead: a fixed symmetric positive-definite operator, as the two-loop
+//! recursion needs. An iteration costs
 //! one gradient of `Φ`, the two-loop recursion over the last `m` pairs
 //! `sₖ = vₖ₊₁ − vₖ`, `yₖ = ∇Φ(vₖ₊₁) − ∇Φ(vₖ)` (Nocedal & Wright,
 //! *Numerical Optimization*, Algorithm 7.4) and three pairs of triangular
@@ -47,6 +55,7 @@
 
 use hooke_core::{StepError, System, Vec3};
 
+use crate::WeakSprings;
 use crate::linear::block::SymBlock;
 use crate::linear::vector::{dot, for_each_row};
 use crate::minimize::laplacian::{Inverse, Laplacian};
@@ -56,8 +65,8 @@ use crate::minimize::laplacian::{Inverse, Laplacian};
 #[derive(Debug, Default)]
 pub(crate) struct QuasiNewton {
     laplacian: Option<Laplacian>,
-    /// How `H₀⁻¹` is applied, for a new pattern.
-    inverse: Inverse,
+    /// How `H₀⁻¹` is applied and where weak springs go, for a new pattern.
+    inverse: (Inverse, WeakSprings),
     /// The pairs `(s, y, 1/sᵀy)`, oldest first from `first`, a ring of
     /// `history` entries of which `len` hold pairs; the buffers are
     /// allocated as pairs arrive, so a long history costs only what the
@@ -87,7 +96,8 @@ pub(crate) struct QuasiNewton {
 
 impl QuasiNewton {
     /// Starts a (sub)step of `system` with `βh = beta_h` keeping `history`
-    /// pairs, `H₀⁻¹` applied as `inverse` says: factorizes `H₀` unless it is
+    /// pairs, `H₀⁻¹` applied as `inverse` says and its weak springs where
+    /// `weak` puts them (see [`Laplacian`]): factorizes `H₀` unless it is
     /// factorized for this `βh`, and starts the history with the newest
     /// `carried` pairs of the last (sub)step where `H₀` and the history's
     /// length are as they were, empty otherwise.
@@ -102,7 +112,7 @@ impl QuasiNewton {
         &mut self,
         system: &System,
         (beta_h, contact): (f64, bool),
-        (history, carried, inverse): (usize, usize, Inverse),
+        (history, carried, inverse): (usize, usize, (Inverse, WeakSprings)),
         time: f64,
     ) -> Result<(), StepError> {
         if self.inverse != inverse {
@@ -324,7 +334,7 @@ mod tests {
             q.begin(
                 &system,
                 (beta_h, contact),
-                (history, 2, Inverse::Factor),
+                (history, 2, (Inverse::Factor, WeakSprings::Kept)),
                 0.0,
             )
             .unwrap();

@@ -5,6 +5,7 @@
 
 use hooke_core::{CompressedSprings, State, StepError, StepReport, System, Vec3};
 
+use crate::linear::cholesky::WeakSprings;
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::topology;
 use crate::linear::vector::for_each_row;
@@ -127,7 +128,10 @@ impl Implicit {
         let quasi = match self.settings.minimizer {
             Minimizer::QuasiNewton { history, carried } => {
                 let contact = Contact::present(system);
-                let inverse = self.settings.solver.initial_hessian_inverse();
+                let inverse = (
+                    self.settings.solver.initial_hessian_inverse(),
+                    self.settings.weak_springs.unwrap_or(WeakSprings::Routed),
+                );
                 self.quasi
                     .begin(system, (beta_h, contact), (history, carried, inverse), time)?;
                 Some(&mut self.quasi)
@@ -137,7 +141,10 @@ impl Implicit {
         let topology = topology(
             &mut self.topology,
             solver,
-            (self.settings.amg_renewal, self.settings.weak_springs),
+            (
+                self.settings.amg_renewal,
+                self.settings.weak_springs.unwrap_or(WeakSprings::Kept),
+            ),
             system,
         )?;
         let solve = Solve {

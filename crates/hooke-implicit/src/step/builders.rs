@@ -57,10 +57,16 @@ impl Implicit {
         self
     }
 
-    /// What a sparse Cholesky factorization ([`LinearSolver::Cholesky`], or
-    /// [`LinearSolver::Auto`]'s choice of it) does with weak springs
-    /// (default [`WeakSprings::Kept`]; [`WeakSprings::Routed`] carries them
-    /// on their paths in a sparser factor that preconditions CG).
+    /// Where weak springs go in the matrix a step factorizes: in Newton's
+    /// sparse Cholesky factorization ([`LinearSolver::Cholesky`], or
+    /// [`LinearSolver::Auto`]'s choice of it) by default
+    /// [`WeakSprings::Kept`], while [`WeakSprings::Routed`] carries them on
+    /// their paths in a sparser factor that preconditions CG; in the
+    /// quasi-Newton step's initial Hessian `H₀`, where it is factored, by
+    /// default [`WeakSprings::Routed`], a sparser `H₀` at least the whole
+    /// one (0.5–0.9 of the time a step at the same tolerance on the bench
+    /// cloth, `benches/README.md`), while [`WeakSprings::Kept`] is the fast
+    /// mass-spring matrix itself; multigrid on `H₀` keeps every spring.
     ///
     /// ```
     /// use hooke_implicit::{Implicit, WeakSprings};
@@ -68,7 +74,7 @@ impl Implicit {
     /// ```
     #[must_use]
     pub fn with_weak_springs(mut self, weak: WeakSprings) -> Self {
-        self.settings.weak_springs = weak;
+        self.settings.weak_springs = Some(weak);
         self.topology = None;
         self.comparison = Comparison::default();
         self

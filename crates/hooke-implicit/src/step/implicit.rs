@@ -205,7 +205,10 @@ pub(crate) struct Settings {
     pub(crate) newton_tolerance: f64,
     pub(crate) inexact_newton: bool,
     pub(crate) amg_renewal: AmgRenewal,
-    pub(crate) weak_springs: WeakSprings,
+    /// Where weak springs go; `None` for each minimiser's default:
+    /// [`WeakSprings::Kept`] in Newton's factor,
+    /// [`WeakSprings::Routed`] in the quasi-Newton step's `H₀`.
+    pub(crate) weak_springs: Option<WeakSprings>,
     pub(crate) max_halvings: u32,
     pub(crate) strict: bool,
     pub(crate) compressed: CompressedSprings,
@@ -278,7 +281,7 @@ impl Implicit {
                 newton_tolerance: Self::NEWTON_TOLERANCE,
                 inexact_newton: true,
                 amg_renewal: AmgRenewal::default(),
-                weak_springs: WeakSprings::default(),
+                weak_springs: None,
                 max_halvings: Self::MAX_HALVINGS,
                 strict: false,
                 compressed: CompressedSprings::Clamped,

@@ -218,23 +218,6 @@ fn implicit(
     if solver.pcg().is_none() {
         reject_pcg()?;
     }
-    let weak_springs = match &t.weak_springs {
-        None => WeakSprings::default(),
-        Some(name) if !matches!(solver, LinearSolver::Auto | LinearSolver::Cholesky) => {
-            return Err(src.invalid(
-                name.span(),
-                "integrator.weak_springs",
-                format!("`weak_springs` with solver \"{}\"", solver.name()),
-                "`weak_springs` only with solver \"auto\" or \"cholesky\"",
-            ));
-        }
-        Some(name) => named(
-            src,
-            ("weak_springs", name),
-            WeakSprings::from_name,
-            &WeakSprings::NAMES,
-        )?,
-    };
     let history = t
         .history
         .as_ref()
@@ -273,6 +256,29 @@ fn implicit(
                     ),
                 )
             })?,
+    };
+    // Newton's and the linearised step's matrix is factorized only by
+    // `auto` or `cholesky`; the quasi-Newton step's `H₀` by any solver.
+    let weak_springs = match &t.weak_springs {
+        None => None,
+        Some(name)
+            if !matches!(minimizer, Minimizer::QuasiNewton { .. })
+                && !matches!(solver, LinearSolver::Auto | LinearSolver::Cholesky) =>
+        {
+            return Err(src.invalid(
+                name.span(),
+                "integrator.weak_springs",
+                format!("`weak_springs` with solver \"{}\"", solver.name()),
+                "`weak_springs` only with solver \"auto\" or \"cholesky\", \
+                 or with step = \"quasi-newton\"",
+            ));
+        }
+        Some(name) => Some(named(
+            src,
+            ("weak_springs", name),
+            WeakSprings::from_name,
+            &WeakSprings::NAMES,
+        )?),
     };
     if !matches!(minimizer, Minimizer::QuasiNewton { .. }) {
         let keys = [

@@ -17,8 +17,8 @@ mod routes;
 use prediction::particle_order;
 pub(crate) use prediction::predicted_factor_entries;
 use routes::Carried;
-pub(crate) use routes::Routes;
 pub use routes::WeakSprings;
+pub(crate) use routes::{Routes, SpringRoute};
 
 use crate::linear::amg::fine::Neighbours;
 
@@ -621,4 +621,4 @@ fn parallelism(_particles: usize) -> Par {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

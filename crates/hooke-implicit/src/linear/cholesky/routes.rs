@@ -42,26 +42,37 @@ use crate::linear::amg::fine::Neighbours;
 use crate::linear::matrix::BlockMatrix;
 use crate::linear::pattern::Pattern;
 
-/// What a sparse Cholesky factorization does with weak springs (see the
-/// `routes` module of `linear::cholesky`).
+/// Where weak springs go in the matrix a step factorizes (see the `routes`
+/// module of `linear::cholesky`): Newton's sparse Cholesky factor, or the
+/// quasi-Newton step's initial Hessian `H₀`.
+/// [`Implicit::with_weak_springs`](crate::Implicit::with_weak_springs)
+/// chooses; by default Newton's factor keeps them and `H₀` routes them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum WeakSprings {
-    /// Every spring's block in its own place: the factor is of the step's
-    /// matrix `A` itself and solves it directly. The default.
+    /// Every spring's term in its own place: Newton's factor is of the
+    /// step's matrix `A` itself and solves it directly; `H₀` is the fast
+    /// mass-spring matrix. The default for Newton's factor.
     #[default]
     Kept,
     /// A weak spring joined to its ends' common neighbour by two springs at
     /// least ten times stiffer (a cloth's bending springs, two particles
-    /// apart along a row) moves its block onto theirs, scaled so that the
-    /// factored matrix `P` is at least `A` and equals it on uniform strain:
-    /// the factor has the stiff springs' sparsity (half the entries on a
-    /// cloth) and preconditions CG on `A`, stopped at Newton's forcing term
-    /// or `10⁻²`, whichever is tighter. Faster where the factorization
-    /// dominates and contact couples no particles outside the pattern (the
-    /// default scene: 0.82 of the stepping time); slower where
-    /// self-contact makes CG run on every solve anyway (the cloth-pile
-    /// scene: 1.5 times, 1.8 in wall time). `benches/README.md` has the
-    /// measurements; scene files say `weak_springs = "routed"`.
+    /// apart along a row) moves its term onto theirs, scaled so that the
+    /// factored matrix `P` is at least the whole one and equals it on
+    /// uniform strain: the factor has the stiff springs' sparsity (half
+    /// the entries on a cloth).
+    ///
+    /// In Newton's factor, `P` preconditions CG on `A`, stopped at
+    /// Newton's forcing term or `10⁻²`, whichever is tighter: faster where
+    /// the factorization dominates and contact couples no particles
+    /// outside the pattern (the default scene: 0.82 of the stepping time);
+    /// slower where self-contact makes CG run on every solve anyway (the
+    /// cloth-pile scene: 1.5 times, 1.8 in wall time). As the quasi-Newton
+    /// step's `H₀` where that is factored, the default there, `P` is simply
+    /// the initial Hessian: 0.5–0.9 of the time a step at the same
+    /// tolerance on the bench cloth. (Applied by multigrid, `H₀` keeps
+    /// every spring.)
+    /// `benches/README.md` has the measurements; scene files say
+    /// `weak_springs = "routed"`.
     Routed,
 }
 
@@ -107,6 +118,15 @@ pub(crate) struct Route {
     pub(crate) ends: [u32; 2],
     pub(crate) middle: u32,
     pub(crate) legs: [u32; 2],
+    pub(crate) weights: [f64; 2],
+}
+
+/// A routed spring by its index (see [`Routes::by_spring`]): the middle
+/// particle `m` and the weights of the legs `(s.i, m)` and `(m, s.j)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct SpringRoute {
+    pub(crate) spring: usize,
+    pub(crate) middle: usize,
     pub(crate) weights: [f64; 2],
 }
 
@@ -208,6 +228,29 @@ impl Routes {
     /// The routes, by slot.
     pub(crate) fn iter(&self) -> impl Iterator<Item = &Route> {
         self.routes.iter()
+    }
+
+    /// The routes by spring, `pattern` the one they were found in: for each
+    /// routed spring `s`, in the order of the springs, its index, its
+    /// middle particle and the weights of its legs from `s.i` and from
+    /// `s.j`.
+    pub(crate) fn by_spring(&self, system: &System, pattern: &Pattern) -> Vec<SpringRoute> {
+        let mut routes: Vec<SpringRoute> = self
+            .routes
+            .iter()
+            .map(|route| {
+                let spring = pattern.spring(route.slot as usize);
+                let [wi, wj] = route.weights;
+                let forward = system.springs()[spring].i == route.ends[0] as usize;
+                SpringRoute {
+                    spring,
+                    middle: route.middle as usize,
+                    weights: if forward { [wi, wj] } else { [wj, wi] },
+                }
+            })
+            .collect();
+        routes.sort_unstable_by_key(|r| r.spring);
+        routes
     }
 
     /// Whether no spring is routed.

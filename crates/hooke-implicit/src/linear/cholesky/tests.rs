@@ -165,18 +165,17 @@ fn ordering_the_particles_fills_no_more() {
     assert!(predicted <= p, "{predicted} predicted, {p} held");
 }
 
-/// A flat `n × n` grid of unit spacing with stiff stretch springs (1000
-/// N/m) along rows and columns, shear springs (100 N/m) across cells and
-/// weak bending springs (1 N/m) two apart, and its backward-Euler matrix
-/// at rest for `h = 0.05` s, with the routes of its weak springs.
-fn routed_grid(n: usize) -> (System, BlockMatrix, Routes) {
-    use crate::minimize::assembly::Assembler;
-    use crate::minimize::linearization::Linearization;
-
+/// A flat `n × n` grid with stiff stretch springs (1000 N/m) along rows
+/// and columns, shear springs (100 N/m) across cells and weak bending
+/// springs (1 N/m) two apart, nothing pinned: rows a unit apart, the
+/// columns' spacing growing by `growth` from one to the next (the particle
+/// of column `c` at `x = c (1 + growth c)`).
+pub(crate) fn stiff_and_weak_grid(n: usize, growth: f64) -> System {
     let mut builder = SystemBuilder::new();
     for row in 0..n {
         for col in 0..n {
-            builder.particle(0.01, [col as f64, 0.0, row as f64]);
+            let c = col as f64;
+            builder.particle(0.01, [c * (1.0 + growth * c), 0.0, row as f64]);
         }
     }
     let at = |row: usize, col: usize| row * n + col;
@@ -198,7 +197,16 @@ fn routed_grid(n: usize) -> (System, BlockMatrix, Routes) {
             }
         }
     }
-    let system = builder.build().unwrap();
+    builder.build().unwrap()
+}
+
+/// [`stiff_and_weak_grid`] of unit spacing, its backward-Euler matrix at rest for
+/// `h = 0.05` s, and the routes of its weak springs.
+fn routed_grid(n: usize) -> (System, BlockMatrix, Routes) {
+    use crate::minimize::assembly::Assembler;
+    use crate::minimize::linearization::Linearization;
+
+    let system = stiff_and_weak_grid(n, 0.0);
     let state = system.initial_state();
     let mut work = Default::default();
     let lin = Linearization::step_from(&state, 0.05, &mut work);
