@@ -295,6 +295,8 @@ pub enum Parameter {
     FineDegree,
     /// The largest number of unknowns multigrid solves directly.
     CoarseUnknowns,
+    /// The broad phase's cell side over the triangles' mean box side.
+    CellFactor,
 }
 
 impl Parameter {
@@ -317,6 +319,7 @@ impl Parameter {
             Self::SmootherDegree => "smoother_degree",
             Self::FineDegree => "fine_degree",
             Self::CoarseUnknowns => "coarse_unknowns",
+            Self::CellFactor => "cell factor",
         }
     }
 }

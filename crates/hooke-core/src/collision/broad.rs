@@ -18,7 +18,7 @@
 //! # Grid
 //!
 //! The boxes are entered into a uniform grid of cell side
-//! `h = 1.5 × (mean largest side of the triangles' boxes)`: a box lies in
+//! `h = 2.5 × (mean largest side of the triangles' boxes)`: a box lies in
 //! the cells `⌊(lo − o)/h⌋ … ⌊(hi − o)/h⌋` per axis (`o` the lower corner
 //! of all boxes), one to eight for a typical primitive. An entry is a `u64`,
 //! the cell's key in the high bits and the box's index in the low bits: the
@@ -65,7 +65,7 @@
 
 use std::ops::Range;
 
-use crate::{Parallelism, Vec3};
+use crate::{Parallelism, Parameter, ParameterError, Vec3};
 
 use super::surface::CollisionMesh;
 
@@ -76,8 +76,13 @@ const LEVEL_RATIO: f64 = 4.0;
 /// The most levels (a ratio of `4²⁴ ≈ 3·10¹⁴` between the cells of the first
 /// and the last); boxes that fit none are tested against every box.
 const MAX_LEVELS: usize = 24;
-/// The cell side in units of the mean largest side of a triangle's box.
-const CELL_FACTOR: f64 = 1.5;
+/// The cell side in units of the mean largest side of a triangle's box
+/// (by default; [`BroadPhase::with_cell_factor`]). Which pairs a search
+/// finds does not depend on it, its time does: against 1.5, a factor of
+/// 2.5 took 0.83 of the searches' time in the default scene, 0.93 in the
+/// cloth pile, 0.90 in two cloths and 0.90 on a 400 × 400 cloth
+/// (`benches/README.md`).
+pub const CELL_FACTOR: f64 = 2.5;
 /// The level of a box tested against every box.
 const WILD: u8 = u8::MAX;
 /// Boxes per task when filling entries in parallel.
@@ -122,9 +127,11 @@ pub struct Candidates {
 /// broad.proximity(&mesh, &x, 0.005, &mut found);
 /// assert!(found.point_triangle.is_empty() && found.edge_edge.is_empty());
 /// ```
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct BroadPhase {
     parallelism: Parallelism,
+    /// The cell side in units of the mean largest side of a triangle's box.
+    cell_factor: f64,
     /// `[lo, hi]` of every primitive: vertices, then edges, then triangles.
     boxes: Vec<[Vec3; 2]>,
     /// The grid level of every box, or [`WILD`].
@@ -172,6 +179,23 @@ struct Layout {
     triangles_only: bool,
 }
 
+impl Default for BroadPhase {
+    fn default() -> Self {
+        Self {
+            parallelism: Parallelism::default(),
+            cell_factor: CELL_FACTOR,
+            boxes: Vec::new(),
+            levels: Vec::new(),
+            grids: Vec::new(),
+            offsets: Vec::new(),
+            own: Vec::new(),
+            finer: Vec::new(),
+            bounds: Vec::new(),
+            found: Vec::new(),
+        }
+    }
+}
+
 impl BroadPhase {
     /// A broad phase that takes the given path (sequential without the
     /// `parallel` feature, whatever is asked).
@@ -181,6 +205,33 @@ impl BroadPhase {
             parallelism,
             ..Self::default()
         }
+    }
+
+    /// The grid's cell side as `factor` times the mean largest side of
+    /// the triangles' boxes ([`CELL_FACTOR`] by default): the pairs found
+    /// are the same, only the time differs.
+    ///
+    /// # Errors
+    /// [`ParameterError`] for a factor that is not finite and positive.
+    ///
+    /// ```
+    /// use hooke_core::Parallelism;
+    /// use hooke_core::collision::broad::BroadPhase;
+    /// let narrow = BroadPhase::new(Parallelism::Sequential).with_cell_factor(1.5);
+    /// assert!(narrow.is_ok());
+    /// assert!(BroadPhase::default().with_cell_factor(0.0).is_err());
+    /// ```
+    pub fn with_cell_factor(mut self, factor: f64) -> Result<Self, ParameterError> {
+        if !(factor.is_finite() && factor > 0.0) {
+            return Err(ParameterError::new(
+                "broad phase",
+                Parameter::CellFactor,
+                factor,
+                "finite and positive",
+            ));
+        }
+        self.cell_factor = factor;
+        Ok(self)
     }
 
     /// Pairs whose boxes around the positions `x`, grown by `distance/2` on
@@ -367,8 +418,9 @@ impl BroadPhase {
         for_each(parallel, triangles, |t, b| *b = bound(&mesh.triangles()[t]));
     }
 
-    /// The levels of the grid: cells `1.5 ×` the mean largest side of the
-    /// triangles' boxes, then `4` times larger, up to the size of the scene.
+    /// The levels of the grid: cells the cell factor times the mean
+    /// largest side of the triangles' boxes, then `4` times larger, up to
+    /// the size of the scene.
     fn make_grids(&mut self, layout: &Layout) {
         let finite = |b: &[Vec3; 2]| b[0].iter().chain(b[1].iter()).all(|c| c.is_finite());
         let (mut lo, mut hi) = (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY));
@@ -388,7 +440,7 @@ impl BroadPhase {
         let scene = (hi - lo).max();
         let mean = sum / count.max(1) as f64;
         let mut side = if mean > 0.0 {
-            CELL_FACTOR * mean
+            self.cell_factor * mean
         } else {
             scene.max(1.0)
         };
@@ -1192,20 +1244,25 @@ pub(crate) mod tests {
         (mesh, x)
     }
 
+    /// Whatever the cell side, from boxes eight cells wide to a few in a
+    /// cell.
     #[test]
     fn proximity_finds_exactly_the_overlapping_boxes_on_soups_and_a_folded_cloth() {
-        let mut broad = BroadPhase::new(Parallelism::Sequential);
-        let mut found = Candidates::default();
-        for seed in 0..6 {
-            let (mesh, x) = scene(seed, 150);
-            for distance in [0.0, 0.01, 0.05] {
-                broad.proximity(&mesh, &x, distance, &mut found);
-                check(&mesh, &found, &brute(&mesh, &x, &x, distance));
-                if distance > 0.0 {
-                    let close = check_distances(&mesh, &x, distance, &found);
-                    assert!(
-                        close > 0 && close <= found.point_triangle.len() + found.edge_edge.len()
-                    );
+        for factor in [0.25, 1.5, CELL_FACTOR, 8.0] {
+            let mut broad = BroadPhase::new(Parallelism::Sequential)
+                .with_cell_factor(factor)
+                .unwrap();
+            let mut found = Candidates::default();
+            for seed in 0..6 {
+                let (mesh, x) = scene(seed, 150);
+                for distance in [0.0, 0.01, 0.05] {
+                    broad.proximity(&mesh, &x, distance, &mut found);
+                    check(&mesh, &found, &brute(&mesh, &x, &x, distance));
+                    if distance > 0.0 {
+                        let close = check_distances(&mesh, &x, distance, &found);
+                        let listed = found.point_triangle.len() + found.edge_edge.len();
+                        assert!(close > 0 && close <= listed, "factor {factor}");
+                    }
                 }
             }
         }
@@ -1233,7 +1290,10 @@ pub(crate) mod tests {
 
     #[test]
     fn swept_boxes_with_fast_and_huge_motions_match_brute_force() {
-        let mut broad = BroadPhase::new(Parallelism::Sequential);
+        // Cells small enough that the fast motions go to coarser levels.
+        let mut broad = BroadPhase::new(Parallelism::Sequential)
+            .with_cell_factor(1.5)
+            .unwrap();
         let mut found = Candidates::default();
         for seed in 0..4 {
             let (mesh, x0) = scene(seed, 120);

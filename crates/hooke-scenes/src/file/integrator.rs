@@ -380,7 +380,8 @@ fn out_of_range(
         | Parameter::Filter
         | Parameter::SmootherDegree
         | Parameter::FineDegree
-        | Parameter::CoarseUnknowns) => (other.name(), None),
+        | Parameter::CoarseUnknowns
+        | Parameter::CellFactor) => (other.name(), None),
     };
     src.error(
         Some(span.unwrap_or(table.span())),
