@@ -241,10 +241,8 @@ impl SparseCholesky {
         for (k, &q) in particle_at.iter().enumerate() {
             later.clear();
             later.extend(
-                neighbours
-                    .of(q)
-                    .iter()
-                    .filter(|&&(_, t)| !routes.is_routed(t as usize))
+                routes
+                    .kept(neighbours.of(q))
                     .map(|&(p, t)| (order[p as usize], t))
                     .filter(|&(l, _)| l as usize > k),
             );

@@ -26,13 +26,7 @@ pub(crate) fn particle_order(pattern: &Pattern, routes: &Routes) -> Option<(Vec<
     let mut row_idx = Vec::new();
     col_ptr.push(0u32);
     for q in 0..n {
-        row_idx.extend(
-            neighbours
-                .of(q)
-                .iter()
-                .filter(|&&(_, t)| !routes.is_routed(t as usize))
-                .map(|&(p, _)| p),
-        );
+        row_idx.extend(routes.kept(neighbours.of(q)).map(|&(p, _)| p));
         col_ptr.push(u32::try_from(row_idx.len()).ok()?);
     }
     drop(neighbours);

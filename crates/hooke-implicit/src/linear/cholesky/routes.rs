@@ -225,6 +225,17 @@ impl Routes {
         self.routed.get(slot).copied().unwrap_or(false)
     }
 
+    /// The `(neighbour, slot)` pairs of `neighbours` whose spring keeps its
+    /// place: the edges of the factor's graph.
+    pub(crate) fn kept<'a>(
+        &'a self,
+        neighbours: &'a [(u32, u32)],
+    ) -> impl Iterator<Item = &'a (u32, u32)> + 'a {
+        neighbours
+            .iter()
+            .filter(|&&(_, t)| !self.is_routed(t as usize))
+    }
+
     /// The routes, by slot.
     pub(crate) fn iter(&self) -> impl Iterator<Item = &Route> {
         self.routes.iter()
