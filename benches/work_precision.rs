@@ -98,11 +98,8 @@ fn variants() -> Vec<Variant> {
             Box::new(move || {
                 let integrator = Implicit::backward_euler()
                     .with_minimizer(minimizer)
-                    .with_solver(solver);
-                let integrator = match weak {
-                    Some(weak) => integrator.with_weak_springs(weak),
-                    None => integrator,
-                };
+                    .with_solver(solver)
+                    .with_weak_springs(weak);
                 Box::new(match stop {
                     Stop::Iterations(k) => integrator
                         .with_newton(k, 1e-12)

@@ -66,14 +66,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .system([0.0, -9.81, 0.0])?;
     let particles = system.particle_count();
     let mut state = system.initial_state();
-    let integrator = Implicit::backward_euler()
+    let mut integrator = Implicit::backward_euler()
         .with_minimizer(minimizer)
         .with_solver(solver)
+        .with_weak_springs(weak)
         .with_newton(Implicit::NEWTON_ITERATIONS, tolerance)?;
-    let mut integrator = match weak {
-        Some(weak) => integrator.with_weak_springs(weak),
-        None => integrator,
-    };
     for step in 0..steps {
         let started = Instant::now();
         let report = integrator.step(&system, &mut state, 1.0 / 60.0)?;

@@ -91,14 +91,11 @@ fn routed_and_kept_factors_take_the_same_converged_steps() {
 fn routed_and_kept_initial_hessians_take_the_same_converged_quasi_newton_steps() {
     let system = cloth();
     let quasi_newton = |weak: Option<WeakSprings>| {
-        let integrator = Implicit::backward_euler()
+        let mut integrator = Implicit::backward_euler()
             .with_minimizer(Minimizer::quasi_newton())
+            .with_weak_springs(weak)
             .with_newton(2000, 1e-9)
             .unwrap();
-        let mut integrator = match weak {
-            Some(weak) => integrator.with_weak_springs(weak),
-            None => integrator,
-        };
         let (state, reports) = run(&system, &mut integrator);
         assert!(reports.iter().all(|r| r.unconverged_steps == 0));
         let iterations: Vec<usize> = reports.iter().map(|r| r.newton_iterations).collect();

@@ -162,12 +162,9 @@ impl IntegratorSpec {
                 strict,
                 error_control,
             } => {
-                let implicit = Implicit::new(scheme).with_solver(solver);
-                let implicit = match weak_springs {
-                    Some(weak) => implicit.with_weak_springs(weak),
-                    None => implicit,
-                };
-                let implicit = implicit
+                let implicit = Implicit::new(scheme)
+                    .with_solver(solver)
+                    .with_weak_springs(weak_springs)
                     .with_newton(newton_iterations, newton_tolerance)?
                     .with_max_halvings(max_halvings)
                     .strict(strict);

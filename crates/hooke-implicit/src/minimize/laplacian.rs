@@ -221,31 +221,34 @@ impl Laplacian {
         // threshold was measured on it), and the factor it keeps is routed
         // if asked; multigrid keeps every spring, as it converged worse on
         // the routed matrix (`benches/README.md`).
-        let whole = Layout::new(system, &unknown, &[]).ok_or_else(too_large)?;
-        let fits = |f: &ScalarCholesky| f.entries() <= FACTOR_ENTRIES_PER_UNKNOWN * free;
-        // `None` for multigrid; a factor otherwise, with the whole matrix's
-        // if `auto` built it to decide.
-        let factor = match inverse {
-            Inverse::Multigrid => None,
-            Inverse::Factor => Some(None),
-            Inverse::Auto => ScalarCholesky::new(&whole.a).filter(fits).map(Some),
+        let whole = || Layout::new(system, &unknown, &[]).ok_or_else(too_large);
+        let routed = || -> Result<(Layout, Solver), StepError> {
+            let pattern = Pattern::new(system)?;
+            let routes = Routes::new(system, &pattern).by_spring(system, &pattern);
+            let layout = Layout::new(system, &unknown, &routes).ok_or_else(too_large)?;
+            let factor = ScalarCholesky::new(&layout.a).ok_or_else(too_large)?;
+            Ok((layout, Solver::Factor(factor)))
         };
-        let (layout, solver) = match (factor, weak) {
-            (None, _) => (whole, Solver::Multigrid(None, vec![0.0; free])),
-            (Some(factor), WeakSprings::Kept) => {
-                let factor = match factor {
-                    Some(f) => f,
-                    None => ScalarCholesky::new(&whole.a).ok_or_else(too_large)?,
-                };
-                (whole, Solver::Factor(factor))
+        let multigrid = || Solver::Multigrid(None, vec![0.0; free]);
+        let (layout, solver) = match (inverse, weak) {
+            (Inverse::Multigrid, _) => (whole()?, multigrid()),
+            (Inverse::Factor, WeakSprings::Routed) => routed()?,
+            (Inverse::Factor, WeakSprings::Kept) => {
+                let layout = whole()?;
+                let factor = ScalarCholesky::new(&layout.a).ok_or_else(too_large)?;
+                (layout, Solver::Factor(factor))
             }
-            (Some(_), WeakSprings::Routed) => {
-                drop(whole);
-                let pattern = Pattern::new(system)?;
-                let routes = Routes::new(system, &pattern).by_spring(system, &pattern);
-                let routed = Layout::new(system, &unknown, &routes).ok_or_else(too_large)?;
-                let factor = ScalarCholesky::new(&routed.a).ok_or_else(too_large)?;
-                (routed, Solver::Factor(factor))
+            (Inverse::Auto, weak) => {
+                let layout = whole()?;
+                let fits = |f: &ScalarCholesky| f.entries() <= FACTOR_ENTRIES_PER_UNKNOWN * free;
+                match (ScalarCholesky::new(&layout.a).filter(fits), weak) {
+                    (None, _) => (layout, multigrid()),
+                    (Some(factor), WeakSprings::Kept) => (layout, Solver::Factor(factor)),
+                    (Some(factor), WeakSprings::Routed) => {
+                        drop((factor, layout));
+                        routed()?
+                    }
+                }
             }
         };
         let mut laplacian = Self {

@@ -67,14 +67,16 @@ impl Implicit {
     /// one (0.5–0.9 of the time a step at the same tolerance on the bench
     /// cloth, `benches/README.md`), while [`WeakSprings::Kept`] is the fast
     /// mass-spring matrix itself; multigrid on `H₀` keeps every spring.
+    /// `None` keeps each step's default.
     ///
     /// ```
     /// use hooke_implicit::{Implicit, WeakSprings};
     /// let routed = Implicit::backward_euler().with_weak_springs(WeakSprings::Routed);
+    /// let by_step = Implicit::backward_euler().with_weak_springs(None);
     /// ```
     #[must_use]
-    pub fn with_weak_springs(mut self, weak: WeakSprings) -> Self {
-        self.settings.weak_springs = Some(weak);
+    pub fn with_weak_springs(mut self, weak: impl Into<Option<WeakSprings>>) -> Self {
+        self.settings.weak_springs = weak.into();
         self.topology = None;
         self.comparison = Comparison::default();
         self
