@@ -124,7 +124,7 @@ mod minimize;
 mod step;
 
 pub use linear::cg::PcgSettings;
-pub use linear::cholesky::WeakSprings;
+pub use linear::cholesky::{Supernodes, WeakSprings};
 pub use linear::solver::{AmgRenewal, AutoSettings, LinearSolver};
 pub use minimize::fast_mass_spring::FastMassSpring;
 pub use step::error_control::{self, ErrorControl};

@@ -143,7 +143,10 @@ impl Implicit {
             solver,
             (
                 self.settings.amg_renewal,
-                self.settings.weak_springs.unwrap_or(WeakSprings::Kept),
+                (
+                    self.settings.weak_springs.unwrap_or(WeakSprings::Kept),
+                    self.settings.supernodes,
+                ),
             ),
             system,
         )?;

@@ -3,7 +3,7 @@
 
 use hooke_core::{CompressedSprings, Integrator, Parameter, ParameterError};
 
-use crate::linear::cholesky::WeakSprings;
+use crate::linear::cholesky::{Supernodes, WeakSprings};
 use crate::linear::solver::{AmgRenewal, LinearSolver};
 use crate::step::comparison::Comparison;
 use crate::step::error_control::ErrorControl;
@@ -77,6 +77,25 @@ impl Implicit {
     #[must_use]
     pub fn with_weak_springs(mut self, weak: impl Into<Option<WeakSprings>>) -> Self {
         self.settings.weak_springs = weak.into();
+        self.topology = None;
+        self.comparison = Comparison::default();
+        self
+    }
+
+    /// Which of faer's numeric factorizations a sparse Cholesky factor of
+    /// the step's matrix runs: by default [`Supernodes::Blocks`], the
+    /// supernodal one wherever the factor averages more than 10 flops per
+    /// entry; [`Supernodes::Faer`] is faer's own rule (40), kept to measure
+    /// against. The factor, and so every step, is the same either way up
+    /// to rounding.
+    ///
+    /// ```
+    /// use hooke_implicit::{Implicit, Supernodes};
+    /// let faer_rule = Implicit::backward_euler().with_supernodes(Supernodes::Faer);
+    /// ```
+    #[must_use]
+    pub fn with_supernodes(mut self, supernodes: Supernodes) -> Self {
+        self.settings.supernodes = supernodes;
         self.topology = None;
         self.comparison = Comparison::default();
         self

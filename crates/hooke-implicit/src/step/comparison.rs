@@ -66,7 +66,6 @@ mod tests {
 
     use super::*;
     use crate::linear::cg::PcgSettings;
-    use crate::linear::cholesky::WeakSprings;
     use crate::linear::solver::topology::topology;
     use crate::linear::solver::{AmgRenewal, LinearSolver};
 
@@ -86,7 +85,7 @@ mod tests {
             let topology = topology(
                 &mut cached,
                 Some(cholesky),
-                (AmgRenewal::default(), WeakSprings::default()),
+                (AmgRenewal::default(), Default::default()),
                 &system,
             )
             .unwrap();

@@ -2,7 +2,7 @@
 
 use hooke_core::{CompressedSprings, History};
 
-use crate::linear::cholesky::WeakSprings;
+use crate::linear::cholesky::{Supernodes, WeakSprings};
 use crate::linear::solver::topology::Topology;
 use crate::linear::solver::{AmgRenewal, LinearSolver};
 use crate::minimize::assembly::Assembler;
@@ -209,6 +209,9 @@ pub(crate) struct Settings {
     /// [`WeakSprings::Kept`] in Newton's factor,
     /// [`WeakSprings::Routed`] in the quasi-Newton step's `H₀`.
     pub(crate) weak_springs: Option<WeakSprings>,
+    /// Which numeric factorization a Cholesky factor of the step's matrix
+    /// runs.
+    pub(crate) supernodes: Supernodes,
     pub(crate) max_halvings: u32,
     pub(crate) strict: bool,
     pub(crate) compressed: CompressedSprings,
@@ -282,6 +285,7 @@ impl Implicit {
                 inexact_newton: true,
                 amg_renewal: AmgRenewal::default(),
                 weak_springs: None,
+                supernodes: Supernodes::default(),
                 max_halvings: Self::MAX_HALVINGS,
                 strict: false,
                 compressed: CompressedSprings::Clamped,

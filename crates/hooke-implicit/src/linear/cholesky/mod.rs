@@ -2,6 +2,7 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
@@ -62,6 +63,45 @@ pub enum FillOrdering {
     /// factorization (the solver before [`FillOrdering::Particles`], kept
     /// to measure against it).
     Scalar,
+}
+
+/// Which of faer's two numeric factorizations [`SparseCholesky`] runs.
+/// faer's symbolic analysis takes the supernodal one (dense blocks of
+/// columns, matrix–matrix kernels) over the simplicial one (column by
+/// column) where the factor averages more flops per entry than a
+/// threshold: `Σ (c + c(c + 1)/2) / Σ c` over the factor's column counts
+/// `c`, about half the mean column count.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Supernodes {
+    /// Supernodal above [`Supernodes::BLOCK_FLOPS_PER_ENTRY`] flops per
+    /// entry (the default). Each particle's three unknowns share their
+    /// pattern, so every column lies in a dense block at least three wide,
+    /// and the supernodal kernels pay on factors far sparser than faer's
+    /// rule, made for scalar matrices, expects. Where the two rules differ
+    /// (the routed factors of the 30 × 30 and two 25 × 25 cloths of the
+    /// contact scenes, the volumetric and shell scenes of 60–84
+    /// particles), the first simulated second takes 0.56–0.82 of the
+    /// time it takes under faer's rule (`benches/README.md`); the
+    /// 21-particle chain, whose factor is a band, stays simplicial.
+    #[default]
+    Blocks,
+    /// faer's own rule: supernodal above 40 flops per entry (the rule
+    /// before 2026-11-28, kept to measure against).
+    Faer,
+}
+
+impl Supernodes {
+    /// The flops per factor entry above which [`Supernodes::Blocks`] takes
+    /// the supernodal factorization.
+    pub const BLOCK_FLOPS_PER_ENTRY: f64 = 10.0;
+
+    /// faer's threshold, as a multiple of its own 40 flops per entry.
+    fn threshold(self) -> SupernodalThreshold {
+        match self {
+            Self::Blocks => SupernodalThreshold(Self::BLOCK_FLOPS_PER_ENTRY / 40.0),
+            Self::Faer => SupernodalThreshold::AUTO,
+        }
+    }
 }
 
 /// A direct solver for the filtered system
@@ -141,6 +181,8 @@ pub struct CholeskyInfo {
     /// Bytes the solver holds: the matrix's and the factor's indices and
     /// values, and the factorization's and solve's scratch.
     pub bytes: usize,
+    /// Whether the numeric factorization is supernodal ([`Supernodes`]).
+    pub supernodal: bool,
 }
 
 impl std::fmt::Debug for SparseCholesky {
@@ -177,22 +219,32 @@ impl SparseCholesky {
     /// # Errors
     /// As [`SparseCholesky::new`].
     pub fn with_ordering(a: &BlockMatrix, ordering: FillOrdering) -> Result<Self, StepError> {
-        Self::with_routes(a, ordering, Routes::default())
+        Self::with_routes(a, (ordering, Supernodes::default()), Routes::default())
+    }
+
+    /// The layout and symbolic factorization for matrices with the pattern of
+    /// `a`, the numeric factorization chosen by `supernodes`.
+    ///
+    /// # Errors
+    /// As [`SparseCholesky::new`].
+    pub fn with_supernodes(a: &BlockMatrix, supernodes: Supernodes) -> Result<Self, StepError> {
+        Self::with_routes(a, (FillOrdering::default(), supernodes), Routes::default())
     }
 
     /// The factorization of matrices with the pattern of `a`, the springs
-    /// of `system`, which treats its weak springs as `weak` says.
+    /// of `system`, which treats its weak springs as `weak` says and runs
+    /// the numeric factorization `supernodes` chooses.
     ///
     /// # Errors
     /// As [`SparseCholesky::new`].
     pub(crate) fn for_system(
         a: &BlockMatrix,
         system: &System,
-        weak: WeakSprings,
+        (weak, supernodes): (WeakSprings, Supernodes),
     ) -> Result<Self, StepError> {
         Self::with_routes(
             a,
-            FillOrdering::default(),
+            (FillOrdering::default(), supernodes),
             Routes::of(system, a.pattern(), weak),
         )
     }
@@ -204,7 +256,7 @@ impl SparseCholesky {
     /// As [`SparseCholesky::new`].
     pub(crate) fn with_routes(
         a: &BlockMatrix,
-        ordering: FillOrdering,
+        (ordering, supernodes): (FillOrdering, Supernodes),
         routes: Routes,
     ) -> Result<Self, StepError> {
         let (n, springs) = (a.rows(), a.pattern().slots());
@@ -261,7 +313,8 @@ impl SparseCholesky {
             }
         }
         drop(neighbours);
-        let symbolic = analyse(dofs, &col_ptr, &row_idx, ordering).map_err(|_| too_large())?;
+        let symbolic =
+            analyse(dofs, (&col_ptr, &row_idx), (ordering, supernodes)).map_err(|_| too_large())?;
         let par = parallelism(n);
         let factor_memory =
             MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
@@ -406,11 +459,14 @@ impl SparseCholesky {
     /// The solver's sizes.
     #[must_use]
     pub fn info(&self) -> CholeskyInfo {
-        let symbolic = match self.symbolic.raw() {
-            SymbolicCholeskyRaw::Simplicial(s) => 4 * (s.col_ptr().len() + s.row_idx().len()),
-            SymbolicCholeskyRaw::Supernodal(s) => {
-                4 * (s.col_ptr_for_row_idx().len() + s.row_idx().len() + s.col_ptr_for_val().len())
+        let (symbolic, supernodal) = match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => {
+                (4 * (s.col_ptr().len() + s.row_idx().len()), false)
             }
+            SymbolicCholeskyRaw::Supernodal(s) => (
+                4 * (s.col_ptr_for_row_idx().len() + s.row_idx().len() + s.col_ptr_for_val().len()),
+                true,
+            ),
         };
         CholeskyInfo {
             unknowns: self.rhs.len(),
@@ -427,6 +483,7 @@ impl SparseCholesky {
                 + symbolic
                 + self.factor_memory.len()
                 + self.solve_memory.len(),
+            supernodal,
         }
     }
 
@@ -546,14 +603,13 @@ impl Preconditioner for FactorPreconditioner<'_> {
 
 /// faer's symbolic factorization of the `dofs × dofs` matrix whose lower
 /// triangle has the compressed columns `col_ptr`, `row_idx`, in the
-/// particles' order or ordered by faer ([`FillOrdering`]). faer analyses a
-/// matrix it does not order from its upper triangle, built here and
-/// dropped after.
+/// particles' order or ordered by faer ([`FillOrdering`]), its numeric
+/// factorization chosen by `supernodes`. faer analyses a matrix it does
+/// not order from its upper triangle, built here and dropped after.
 fn analyse(
     dofs: usize,
-    col_ptr: &[u32],
-    row_idx: &[u32],
-    ordering: FillOrdering,
+    (col_ptr, row_idx): (&[u32], &[u32]),
+    (ordering, supernodes): (FillOrdering, Supernodes),
 ) -> Result<SymbolicCholesky<u32>, faer::sparse::FaerError> {
     let upper;
     let (pattern, side, fill_ordering) = match ordering {
@@ -576,7 +632,10 @@ fn analyse(
         pattern,
         side,
         fill_ordering,
-        CholeskySymbolicParams::default(),
+        CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: supernodes.threshold(),
+            ..CholeskySymbolicParams::default()
+        },
     )
 }
 

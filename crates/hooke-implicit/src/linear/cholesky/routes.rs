@@ -66,7 +66,8 @@ pub enum WeakSprings {
     /// the factorization dominates and contact couples no particles
     /// outside the pattern (the default scene: 0.82 of the stepping time);
     /// slower where self-contact makes CG run on every solve anyway (the
-    /// cloth-pile scene: 1.5 times, 1.8 in wall time). As the quasi-Newton
+    /// cloth-pile scene: 1.10 of the wall time, with more Newton
+    /// iterations a step). As the quasi-Newton
     /// step's `H₀` where that is factored, the default there, `P` is simply
     /// the initial Hessian: 0.5–0.9 of the time a step at the same
     /// tolerance on the bench cloth. (Applied by multigrid, `H₀` keeps

@@ -249,7 +249,9 @@ fn the_routed_factor_solves_a_majorizer_exact_on_affine_fields() {
     let (_, a, routes) = routed_grid(n);
     let filters = vec![Filter::Free; n * n];
     let whole = SparseCholesky::new(&a).unwrap();
-    let mut routed = SparseCholesky::with_routes(&a, FillOrdering::Particles, routes).unwrap();
+    let mut routed =
+        SparseCholesky::with_routes(&a, (FillOrdering::Particles, Supernodes::default()), routes)
+            .unwrap();
     let (kept, carried) = (whole.info().factor_nonzeros, routed.info().factor_nonzeros);
     assert!(2 * carried < 3 * kept / 2, "{carried} against {kept}");
     routed.factorize(&a, &filters).unwrap();
@@ -286,6 +288,42 @@ fn the_routed_factor_solves_a_majorizer_exact_on_affine_fields() {
         assert!(
             factored > 0.0 && factored <= exact * (1.0 + 1e-12),
             "y {k}: bᵀP⁻¹b = {factored:e}, bᵀA⁻¹b = {exact:e}"
+        );
+    }
+}
+
+/// On the routed factor of a 30 × 30 grid (the contact scenes' cloths are
+/// 25 × 25 and 30 × 30), faer's own rule takes the simplicial
+/// factorization and [`Supernodes::Blocks`] the supernodal one; the two
+/// factor the same matrix, so they solve it alike, to rounding.
+#[test]
+fn both_supernode_rules_factor_the_same_matrix_and_blocks_takes_supernodes_sooner() {
+    let n = 30;
+    let (_, a, routes) = routed_grid(n);
+    let filters = vec![Filter::Free; n * n];
+    let solve = |supernodes| {
+        let mut factor =
+            SparseCholesky::with_routes(&a, (FillOrdering::Particles, supernodes), routes.clone())
+                .unwrap();
+        factor.factorize(&a, &filters).unwrap();
+        let b: Vec<Vec3> = (0..n * n)
+            .map(|i| {
+                let t = i as f64;
+                Vec3::new(t.sin(), (1.3 * t).cos(), (0.7 * t + 1.0).sin())
+            })
+            .collect();
+        let mut x = vec![Vec3::zeros(); n * n];
+        factor.solve_factored(&filters, &b, &mut x);
+        (factor.info().supernodal, x)
+    };
+    let (blocks, by_blocks) = solve(Supernodes::Blocks);
+    let (faer, by_faer) = solve(Supernodes::Faer);
+    assert!(blocks && !faer, "supernodal: blocks {blocks}, faer {faer}");
+    let size = by_faer.iter().map(|x| x.norm()).fold(0.0, f64::max);
+    for (i, (x, y)) in by_blocks.iter().zip(&by_faer).enumerate() {
+        assert!(
+            (x - y).norm() <= 1e-10 * size,
+            "particle {i}: {x:?} against {y:?}"
         );
     }
 }

@@ -47,7 +47,7 @@ pub(super) fn trial(
         filters,
         cholesky,
         amg,
-        weak_springs,
+        factoring: (weak_springs, supernodes),
         ..
     } = topology;
     // xorshift64*, mapped to [−1, 1].
@@ -76,7 +76,7 @@ pub(super) fn trial(
             Some(factor) => factor,
             None => cholesky.insert(SparseCholesky::with_routes(
                 matrix,
-                FillOrdering::default(),
+                (FillOrdering::default(), *supernodes),
                 routes,
             )?),
         };

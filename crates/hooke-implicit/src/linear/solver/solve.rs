@@ -78,7 +78,7 @@ impl Solve<'_> {
             amg,
             fallback,
             runner_up,
-            weak_springs,
+            factoring,
             ..
         } = topology;
         report.force_evaluations += 1;
@@ -217,11 +217,7 @@ impl Solve<'_> {
             *fallback = false;
             *runner_up = None;
             amg.clear();
-            *cholesky = Some(SparseCholesky::for_system(
-                matrix,
-                self.system,
-                *weak_springs,
-            )?);
+            *cholesky = Some(SparseCholesky::for_system(matrix, self.system, *factoring)?);
         }
         if *solver == LinearSolver::Cholesky {
             let factor = cholesky
@@ -254,7 +250,6 @@ mod tests {
     use hooke_core::reference::Sheet;
 
     use super::*;
-    use crate::linear::cholesky::WeakSprings;
     use crate::linear::solver::renewal::AmgRenewal;
     use crate::linear::solver::topology::topology;
     use crate::minimize::assembly::Assembler;
@@ -279,7 +274,7 @@ mod tests {
         let topology = topology(
             &mut cached,
             Some(LinearSolver::Pcg(capped)),
-            (AmgRenewal::default(), WeakSprings::default()),
+            (AmgRenewal::default(), Default::default()),
             &system,
         )
         .unwrap();

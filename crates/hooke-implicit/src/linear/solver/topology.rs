@@ -8,7 +8,7 @@ use super::auto_settings::AutoSettings;
 use super::renewal::{AmgRenewal, AmgState};
 use crate::PcgSettings;
 use crate::linear::cg::BlockJacobi;
-use crate::linear::cholesky::{SparseCholesky, WeakSprings};
+use crate::linear::cholesky::{SparseCholesky, Supernodes, WeakSprings};
 use crate::linear::filter::{Filter, pin_filters};
 use crate::linear::matrix::BlockMatrix;
 use crate::linear::pattern::Pattern;
@@ -29,8 +29,8 @@ pub(crate) struct Topology {
     pub(super) refactor: bool,
     pub(super) amg: AmgState,
     /// What a Cholesky factor built for [`LinearSolver::Cholesky`] does
-    /// with weak springs.
-    pub(super) weak_springs: WeakSprings,
+    /// with weak springs, and which numeric factorization it runs.
+    pub(super) factoring: (WeakSprings, Supernodes),
     /// Whether an iterative solve that stops at its cap falls back to the
     /// factorization: when [`LinearSolver::Auto`] chose the iterative
     /// solver over an affordable factor.
@@ -124,7 +124,8 @@ impl Topology {
 /// changes or none were built yet (the step's history is keyed on the system
 /// too, so it restarts then). [`LinearSolver::Auto`] is resolved here by
 /// the system's size, or left to the trial. A factor for
-/// [`LinearSolver::Cholesky`] treats weak springs as `weak_springs` says;
+/// [`LinearSolver::Cholesky`] treats weak springs and picks its numeric
+/// factorization as `factoring` says;
 /// one for [`LinearSolver::LaggedCholesky`], a preconditioner across
 /// matrices already, keeps them. Without `solver` (a step that
 /// assembles no matrix), the matrix is its pattern alone
@@ -132,7 +133,7 @@ impl Topology {
 pub(crate) fn topology<'a>(
     cached: &'a mut Option<Topology>,
     solver: Option<LinearSolver>,
-    (renewal, weak_springs): (AmgRenewal, WeakSprings),
+    (renewal, factoring): (AmgRenewal, (WeakSprings, Supernodes)),
     system: &System,
 ) -> Result<&'a mut Topology, StepError> {
     if cached.as_ref().is_some_and(|t| t.system != system.id()) {
@@ -156,9 +157,7 @@ pub(crate) fn topology<'a>(
             solver => solver,
         };
         let cholesky = match solver {
-            LinearSolver::Cholesky => {
-                Some(SparseCholesky::for_system(&matrix, system, weak_springs)?)
-            }
+            LinearSolver::Cholesky => Some(SparseCholesky::for_system(&matrix, system, factoring)?),
             LinearSolver::LaggedCholesky(_) => Some(SparseCholesky::new(&matrix)?),
             _ => None,
         };
@@ -172,7 +171,7 @@ pub(crate) fn topology<'a>(
             cholesky,
             refactor: true,
             amg: AmgState::new(renewal),
-            weak_springs,
+            factoring,
             fallback: false,
             runner_up: None,
         });
