@@ -222,15 +222,6 @@ impl SparseCholesky {
         Self::with_routes(a, (ordering, Supernodes::default()), Routes::default())
     }
 
-    /// The layout and symbolic factorization for matrices with the pattern of
-    /// `a`, the numeric factorization chosen by `supernodes`.
-    ///
-    /// # Errors
-    /// As [`SparseCholesky::new`].
-    pub fn with_supernodes(a: &BlockMatrix, supernodes: Supernodes) -> Result<Self, StepError> {
-        Self::with_routes(a, (FillOrdering::default(), supernodes), Routes::default())
-    }
-
     /// The factorization of matrices with the pattern of `a`, the springs
     /// of `system`, which treats its weak springs as `weak` says and runs
     /// the numeric factorization `supernodes` chooses.
