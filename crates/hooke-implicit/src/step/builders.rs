@@ -20,9 +20,7 @@ impl Implicit {
     #[must_use]
     pub fn with_solver(mut self, solver: LinearSolver) -> Self {
         self.settings.solver = solver;
-        self.topology = None;
-        self.comparison = Comparison::default();
-        self
+        self.rebuilt()
     }
 
     /// Whether an iterative linear solver (PCG, multigrid, lagged
@@ -52,9 +50,7 @@ impl Implicit {
     #[must_use]
     pub fn with_amg_renewal(mut self, renewal: AmgRenewal) -> Self {
         self.settings.amg_renewal = renewal;
-        self.topology = None;
-        self.comparison = Comparison::default();
-        self
+        self.rebuilt()
     }
 
     /// Where weak springs go in the matrix a step factorizes: in Newton's
@@ -77,9 +73,7 @@ impl Implicit {
     #[must_use]
     pub fn with_weak_springs(mut self, weak: impl Into<Option<WeakSprings>>) -> Self {
         self.settings.weak_springs = weak.into();
-        self.topology = None;
-        self.comparison = Comparison::default();
-        self
+        self.rebuilt()
     }
 
     /// Which of faer's numeric factorizations a sparse Cholesky factor of
@@ -96,9 +90,7 @@ impl Implicit {
     #[must_use]
     pub fn with_supernodes(mut self, supernodes: Supernodes) -> Self {
         self.settings.supernodes = supernodes;
-        self.topology = None;
-        self.comparison = Comparison::default();
-        self
+        self.rebuilt()
     }
 
     /// Takes up to `max_iterations` Newton solves per (sub)step, stopping
@@ -169,6 +161,13 @@ impl Implicit {
     #[must_use]
     pub fn with_minimizer(mut self, minimizer: Minimizer) -> Self {
         self.settings.minimizer = minimizer;
+        self.rebuilt()
+    }
+
+    /// Drops what the integrator built for its former settings — the
+    /// topology (matrix, filters, factor or hierarchy) and the solver
+    /// comparison — so that the next step builds them for the new ones.
+    fn rebuilt(mut self) -> Self {
         self.topology = None;
         self.comparison = Comparison::default();
         self
