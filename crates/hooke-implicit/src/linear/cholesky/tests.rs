@@ -301,17 +301,17 @@ fn both_supernode_rules_factor_the_same_matrix_and_blocks_takes_supernodes_soone
     let n = 30;
     let (_, a, routes) = routed_grid(n);
     let filters = vec![Filter::Free; n * n];
+    let b: Vec<Vec3> = (0..n * n)
+        .map(|i| {
+            let t = i as f64;
+            Vec3::new(t.sin(), (1.3 * t).cos(), (0.7 * t + 1.0).sin())
+        })
+        .collect();
     let solve = |supernodes| {
         let mut factor =
             SparseCholesky::with_routes(&a, (FillOrdering::Particles, supernodes), routes.clone())
                 .unwrap();
         factor.factorize(&a, &filters).unwrap();
-        let b: Vec<Vec3> = (0..n * n)
-            .map(|i| {
-                let t = i as f64;
-                Vec3::new(t.sin(), (1.3 * t).cos(), (0.7 * t + 1.0).sin())
-            })
-            .collect();
         let mut x = vec![Vec3::zeros(); n * n];
         factor.solve_factored(&filters, &b, &mut x);
         (factor.info().supernodal, x)
