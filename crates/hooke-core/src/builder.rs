@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use crate::collision::surface::CollisionMesh;
 use crate::error::{BuildError, Quantity, SpringParameter};
 use crate::system::fresh_system_id;
-use crate::{Obstacle, Path, Spring, System, Tet, Vec3};
+use crate::{Obstacle, Path, Spring, System, Term, Tet, Vec3};
 
 /// Builds a [`System`]; every value is checked at [`SystemBuilder::build`],
 /// which names the first particle, spring or field that is wrong.
@@ -38,6 +38,7 @@ pub struct SystemBuilder {
     obstacles: Vec<Obstacle>,
     surfaces: Vec<SurfaceEntry>,
     contact_distance: Option<f64>,
+    terms: Vec<Box<dyn Term>>,
 }
 
 /// A collision surface being added to a [`SystemBuilder`]: a body's
@@ -270,6 +271,53 @@ impl SystemBuilder {
         self
     }
 
+    /// Adds a term beyond the springs, volume elements, gravity and air
+    /// damping: a force with a potential or a dissipation potential, given
+    /// through the [`Term`] interface (its module gives the equations),
+    /// which every integrator then includes. The term's constructor checks
+    /// its parameters; [`SystemBuilder::build`] checks it against the
+    /// system ([`Term::problem`]).
+    ///
+    /// ```
+    /// use hooke_core::term::{At, Hessian, Potential, Term, When};
+    /// use hooke_core::{System, SystemBuilder, Vec3};
+    ///
+    /// /// A uniform force `F` on particle 0: the potential `−F·x₀`.
+    /// #[derive(Debug, Clone)]
+    /// struct Push(Vec3);
+    ///
+    /// impl Term for Push {
+    ///     fn name(&self) -> &'static str {
+    ///         "push"
+    ///     }
+    ///     fn value(&mut self, _: &System, at: &At<'_>) -> Potential {
+    ///         let e = -self.0.dot(&at.x[0]);
+    ///         Potential { value: e, magnitude: e.abs() }
+    ///     }
+    ///     fn add(&mut self, _: &System, at: &At<'_>, b: &mut [Vec3], _: &mut dyn Hessian) {
+    ///         b[0] += at.beta_h * self.0;
+    ///     }
+    ///     fn energy(&mut self, _: &System, x: &[Vec3], _: &[Vec3], _: When) -> Potential {
+    ///         let e = -self.0.dot(&x[0]);
+    ///         Potential { value: e, magnitude: e.abs() }
+    ///     }
+    ///     fn force(&self, _: &System, _: &[Vec3], _: &[Vec3], f: &mut [Vec3]) {
+    ///         f[0] += self.0;
+    ///     }
+    /// }
+    ///
+    /// let mut b = SystemBuilder::new();
+    /// b.particle(2.0, [0.0; 3]);
+    /// b.term(Push(Vec3::new(1.0, 0.0, 0.0)));
+    /// let system = b.build()?;
+    /// assert_eq!(system.terms()[0].name(), "push");
+    /// # Ok::<(), hooke_core::BuildError>(())
+    /// ```
+    pub fn term(&mut self, term: impl Term + 'static) -> &mut Self {
+        self.terms.push(Box::new(term));
+        self
+    }
+
     /// Adds a kinematic obstacle that particles cannot enter; every
     /// integrator resolves contacts with it at the end of each step.
     ///
@@ -329,7 +377,8 @@ impl SystemBuilder {
     /// # Errors
     /// The first problem found, in this order: particles (mass, position,
     /// velocity), springs (endpoints, parameters, duplicates), volume
-    /// elements, pins, gravity, air damping, obstacles. See [`BuildError`].
+    /// elements, pins, gravity, air damping, obstacles, surfaces, contact
+    /// distance, terms. See [`BuildError`].
     pub fn build(&self) -> Result<System, BuildError> {
         self.check_particles()?;
         let springs = self.resolved_springs()?;
@@ -382,7 +431,7 @@ impl SystemBuilder {
             .zip(&pinned)
             .map(|(&m, &p)| if p { 0.0 } else { 1.0 / m })
             .collect();
-        Ok(System {
+        let system = System {
             id: fresh_system_id(),
             masses: self.masses.clone(),
             inverse_masses,
@@ -398,7 +447,18 @@ impl SystemBuilder {
             surfaces,
             surface_properties,
             contact_distance,
-        })
+            terms: self.terms.clone(),
+        };
+        for (term, t) in system.terms.iter().enumerate() {
+            if let Some(problem) = t.problem(&system) {
+                return Err(BuildError::InvalidTerm {
+                    term,
+                    name: t.name(),
+                    problem,
+                });
+            }
+        }
+        Ok(system)
     }
 
     /// The volume elements, checked and oriented.

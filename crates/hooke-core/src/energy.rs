@@ -1,8 +1,8 @@
 //! Energy, dissipated power and strain of a state, for energy-balance checks
 //! and observers.
 //!
-//! With gravity and the springs as the only conservative forces and pins at
-//! rest, the total energy obeys
+//! With gravity, the springs and the volume elements as the only forces
+//! besides the dampers, and pins at rest, the total energy obeys
 //!
 //! ```text
 //! d/dt (T + V_springs + V_volume + V_gravity) = −P_dissipation,
@@ -14,7 +14,7 @@
 //! so `E(t) + ∫₀ᵗ P dt = E(0)` holds for the exact motion, and the gap is a
 //! measure of an integrator's energy error.
 
-use crate::{State, StepError, System};
+use crate::{State, StepError, System, When};
 
 /// The parts of a state's mechanical energy, in joules.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -26,13 +26,16 @@ pub struct Energy {
     pub elastic: f64,
     /// Gravitational potential `−Σ mᵢ g·xᵢ` (zero without gravity).
     pub gravitational: f64,
+    /// The energy of the system's own terms ([`System::terms`]; zero
+    /// without them).
+    pub terms: f64,
 }
 
 impl Energy {
-    /// Kinetic plus elastic plus gravitational energy.
+    /// Kinetic plus elastic plus gravitational energy, plus the terms'.
     #[must_use]
     pub fn total(&self) -> f64 {
-        self.kinetic + self.elastic + self.gravitational
+        self.kinetic + self.elastic + self.gravitational + self.terms
     }
 }
 
@@ -76,10 +79,19 @@ impl System {
                 .map(|(m, xi)| m * g.dot(xi))
                 .sum::<f64>()
         });
+        // A term evaluates with scratch of its own (a step lags state in its
+        // copies), so the system's terms are evaluated on copies: a system
+        // without terms allocates nothing.
+        let terms = self
+            .terms
+            .iter()
+            .map(|t| t.clone_box().energy(self, x, v, When::End).value)
+            .sum();
         Ok(Energy {
             kinetic,
             elastic,
             gravitational,
+            terms,
         })
     }
 

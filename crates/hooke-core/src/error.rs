@@ -166,6 +166,17 @@ pub enum BuildError {
         /// What is wrong, naming the field.
         problem: &'static str,
     },
+    /// A term ([`SystemBuilder::term`](crate::SystemBuilder::term)) that
+    /// does not fit the system.
+    #[error("term {term} ({name}): {problem}")]
+    InvalidTerm {
+        /// Index of the term, in the order added.
+        term: usize,
+        /// The term's name ([`Term::name`](crate::Term::name)).
+        name: &'static str,
+        /// What is wrong.
+        problem: String,
+    },
 }
 
 /// A step that could not be taken. The state is left as it was before the

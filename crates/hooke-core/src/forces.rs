@@ -1,6 +1,11 @@
 //! Force and acceleration evaluation, `a = M⁻¹ f(x, v)`, sequential or
 //! data-parallel.
 //!
+//! The springs, volume elements, gravity and air damping are summed in
+//! fused passes of their own; the system's own terms
+//! ([`System::terms`]) then add theirs through
+//! [`Term::force`](crate::Term::force).
+//!
 //! The sequential path makes one pass over the springs and scatters each
 //! spring force to its two ends. Scattering from several threads into one
 //! array would race, so the parallel path (feature `parallel`) splits the
@@ -156,6 +161,25 @@ impl ForceEvaluator {
             .for_each(|(i, fi)| {
                 *fi += buffers.iter().skip(i).step_by(n).sum::<Vec3>();
             });
+        add_term_forces(system, x, v, f);
+    }
+}
+
+impl System {
+    /// Adds the springs' forces, elastic and damping, at positions `x` and
+    /// velocities `v` to `f`, as [`ForceEvaluator`]'s sequential pass does.
+    ///
+    /// # Panics
+    /// If a spring names a particle beyond `x`, `v` or `f`.
+    pub fn add_spring_forces(&self, x: &[Vec3], v: &[Vec3], f: &mut [Vec3]) {
+        scatter(&self.springs, x, v, f);
+    }
+}
+
+/// Adds the forces of the system's own terms ([`System::terms`]).
+fn add_term_forces(system: &System, x: &[Vec3], v: &[Vec3], f: &mut [Vec3]) {
+    for term in system.terms() {
+        term.force(system, x, v, f);
     }
 }
 
@@ -192,8 +216,9 @@ fn scatter(springs: &[crate::Spring], x: &[Vec3], v: &[Vec3], f: &mut [Vec3]) {
 
 fn sequential_forces(system: &System, x: &[Vec3], v: &[Vec3], f: &mut [Vec3]) {
     external_forces(system, v, f);
-    scatter(system.springs(), x, v, f);
+    system.add_spring_forces(x, v, f);
     system.add_volume_forces(x, f);
+    add_term_forces(system, x, v, f);
 }
 
 #[cfg(test)]

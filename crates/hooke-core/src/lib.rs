@@ -7,6 +7,9 @@
 //! - springs (`i`, `j`, stiffness `k`, rest length `L`, axial damping `c`) —
 //!   see [`Spring`] for the force and its Jacobian blocks;
 //! - gravity `mᵢ g` and air damping `−γ vᵢ`, if declared;
+//! - the scene's own [`Term`]s ([`SystemBuilder::term`]): any force with a
+//!   potential or dissipation potential, seen by every integrator (the
+//!   [`term`] module gives the interface and its equations);
 //! - pins: a pinned particle has zero acceleration, or follows a scripted
 //!   [`Path`] ([`SystemBuilder::pin_moving`]);
 //! - kinematic [`Obstacle`]s (plane, sphere, box, capsule, optionally moving
@@ -69,7 +72,9 @@ mod simulation;
 mod spring;
 mod state;
 mod step;
+mod sym_block;
 mod system;
+pub mod term;
 mod volume;
 
 pub use builder::{SpringEntry, SurfaceEntry, SystemBuilder};
@@ -85,7 +90,9 @@ pub use simulation::{End, Run, Simulation};
 pub use spring::{CompressedSprings, Linearized, Spring};
 pub use state::{History, State};
 pub use step::{Start, StepBuffers};
+pub use sym_block::SymBlock;
 pub use system::{Inversion, System};
+pub use term::{At, Hessian, Potential, StepStart, Term, When};
 pub use volume::{Mat12, TET_PAIRS, Tet, TetBlocks, TetDerivatives, TetHessian};
 
 /// A 3-vector of `f64`: positions, velocities, forces.

@@ -4,7 +4,9 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::collision::surface::CollisionMesh;
-use crate::{BuildError, Obstacle, Path, Spring, SpringParameter, State, StepError, Tet, Vec3};
+use crate::{
+    BuildError, Obstacle, Path, Spring, SpringParameter, State, StepError, Term, Tet, Vec3,
+};
 
 static NEXT_SYSTEM_ID: AtomicU64 = AtomicU64::new(1);
 
@@ -17,9 +19,11 @@ static NEXT_SYSTEM_ID: AtomicU64 = AtomicU64::new(1);
 /// fᵢ = Σ_springs fᵢ^spring  +  mᵢ g  −  γ vᵢ
 /// ```
 ///
-/// plus the forces of the volume elements ([`Tet`]), where gravity `g` and
-/// air damping `γ` are present only if the system declares them. A pinned particle has zero acceleration: it keeps its
-/// initial velocity (zero unless one was given), whatever force acts on it.
+/// plus the forces of the volume elements ([`Tet`]) and of the system's own
+/// [`Term`]s ([`System::terms`]), where gravity `g` and air damping `γ` are
+/// present only if the system declares them. A pinned particle has zero
+/// acceleration: it keeps its initial velocity (zero unless one was given),
+/// whatever force acts on it.
 #[derive(Debug, Clone)]
 pub struct System {
     pub(crate) id: u64,
@@ -41,6 +45,9 @@ pub struct System {
     /// coefficient.
     pub(crate) surface_properties: Vec<[f64; 2]>,
     pub(crate) contact_distance: f64,
+    /// The terms declared beyond the springs, volume elements, gravity and
+    /// air damping.
+    pub(crate) terms: Vec<Box<dyn Term>>,
 }
 
 /// The state of a system's volume elements ([`System::inversion`]).
@@ -176,6 +183,18 @@ impl System {
             })
     }
 
+    /// The terms the system declares beyond its springs, volume elements,
+    /// gravity and air damping ([`SystemBuilder::term`](crate::SystemBuilder::term)),
+    /// in the order they were added: every integrator includes them, the
+    /// explicit ones through [`Term::force`], the implicit ones in the
+    /// potential they minimise. A step evaluates its own copies
+    /// ([`Term::clone_box`](crate::term::TermClone::clone_box)), in which it
+    /// lags what the terms lag.
+    #[must_use]
+    pub fn terms(&self) -> &[Box<dyn Term>] {
+        &self.terms
+    }
+
     /// Gravitational acceleration `g`, if the system has gravity.
     #[must_use]
     pub fn gravity(&self) -> Option<Vec3> {
@@ -219,9 +238,10 @@ impl System {
 
     /// This system with every spring's stiffness and every volume
     /// element's modulus multiplied by `factor`: the same particles, rest
-    /// lengths, damping, forces and obstacles, as a new system with its own
-    /// [`System::id`]. The natural frequencies of
-    /// the undamped system scale as `√factor`.
+    /// lengths, damping, forces, terms and obstacles, as a new system with
+    /// its own [`System::id`]. The natural frequencies of the undamped
+    /// system scale as `√factor` where its springs and elements hold all
+    /// its stiffness.
     ///
     /// ```
     /// # use hooke_core::reference::Oscillator;

@@ -138,7 +138,7 @@ pub use step::scheme::{Minimizer, Scheme};
 #[doc(hidden)]
 pub mod internals {
     pub use crate::linear::amg::{self, Amg, AmgInfo, AmgSettings};
-    pub use crate::linear::block::SymBlock;
+    pub use hooke_core::SymBlock;
     pub use crate::linear::cg::{self, BlockJacobi};
     pub use crate::linear::cholesky::{
         CholeskyError, CholeskyInfo, FactorPreconditioner, FillOrdering, SparseCholesky,

@@ -3,7 +3,6 @@
 //! multigrid, and the choice among them for each Newton step's system.
 
 pub mod amg;
-pub(crate) mod block;
 pub mod cg;
 pub(crate) mod cholesky;
 pub(crate) mod filter;
@@ -11,3 +10,9 @@ pub(crate) mod matrix;
 pub(crate) mod pattern;
 pub(crate) mod solver;
 pub(crate) mod vector;
+
+/// The symmetric 3 × 3 block of the matrices ([`hooke_core::SymBlock`]),
+/// where the contact module imports it from.
+pub(crate) mod block {
+    pub(crate) use hooke_core::SymBlock;
+}

@@ -286,7 +286,9 @@ fn build_error(src: &Source<'_>, error: BuildError, places: &Places<'_>) -> Scen
             .and_then(|&body| placed.get(body))
             .map(|b| &b.at),
         BuildError::InvalidContactDistance { .. } => places.contact_distance,
-        BuildError::NonFiniteGravity { .. } | BuildError::InvalidAirDamping { .. } => None,
+        BuildError::NonFiniteGravity { .. }
+        | BuildError::InvalidAirDamping { .. }
+        | BuildError::InvalidTerm { .. } => None,
     };
     match at {
         Some(at) => src.error(

@@ -1,10 +1,12 @@
 //! [`SymBlock`]: a symmetric 3x3 block stored as its six distinct entries.
 
-use hooke_core::{Mat3, Vec3};
+use crate::{Mat3, Vec3};
 
 /// A symmetric 3x3 matrix `[[a, b, c], [b, d, e], [c, e, f]]`, stored as
-/// `[a, b, c, d, e, f]` (48 bytes instead of 72). Every block of the system
-/// matrix is symmetric, so products read a third less memory.
+/// `[a, b, c, d, e, f]` (48 bytes instead of 72): a particle's diagonal
+/// block of a Hessian ([`Hessian::add_row`](crate::Hessian::add_row)), and
+/// every spring's block of an implicit step's matrix, whose products then
+/// read a third less memory.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SymBlock(pub [f64; 6]);
 
