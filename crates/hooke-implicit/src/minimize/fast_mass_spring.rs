@@ -39,12 +39,12 @@ use crate::minimize::laplacian::{Inverse, Laplacian};
 /// `n × n` for `n` free particles) once and every iteration costs a local
 /// step and three triangular solve pairs.
 ///
-/// Volume elements ([`hooke_core::Tet`]) have no such splitting into a
-/// constant quadratic and a projection; their forces at the current
-/// iterate join `f_ext` in the global step. The fixed point is still the
-/// backward-Euler step; the matrix stays constant, so where the elements
-/// are stiffer than the springs the iteration converges slowly or not at
-/// all.
+/// Volume elements ([`hooke_core::Tet`]) and the system's own terms
+/// ([`System::terms`]) have no such splitting into a constant quadratic and
+/// a projection; their forces at the current iterate (its velocities
+/// `(x − xₙ)/h`) join `f_ext` in the global step. The fixed point is still
+/// the backward-Euler step; the matrix stays constant, so where they are
+/// stiffer than the springs the iteration converges slowly or not at all.
 ///
 /// Pinned particles are removed unknowns: they move with their path's
 /// velocity (at rest for plain pins), and their springs' terms move to the
@@ -59,8 +59,9 @@ pub struct FastMassSpring {
     out: StepBuffers,
     y: Vec<Vec3>,
     d: Vec<Vec3>,
-    /// The volume elements' forces at the current iterate.
-    volume: Vec<Vec3>,
+    /// The volume elements' and the system's own terms' forces at the
+    /// current iterate.
+    forces: Vec<Vec3>,
 }
 
 impl FastMassSpring {
@@ -93,7 +94,7 @@ impl FastMassSpring {
             out: StepBuffers::default(),
             y: Vec::new(),
             d: Vec::new(),
-            volume: Vec::new(),
+            forces: Vec::new(),
         })
     }
 
@@ -113,7 +114,7 @@ impl Default for FastMassSpring {
             out: StepBuffers::default(),
             y: Vec::new(),
             d: Vec::new(),
-            volume: Vec::new(),
+            forces: Vec::new(),
         }
     }
 }
@@ -131,7 +132,7 @@ impl Integrator for FastMassSpring {
             out,
             y,
             d,
-            volume,
+            forces,
         } = self;
         out.begin(Self::NAME, system, state, dt, [&mut *y])?;
         d.resize(system.springs().len(), Vec3::zeros());
@@ -176,9 +177,17 @@ impl Integrator for FastMassSpring {
                     Vec3::zeros()
                 };
             }
-            volume.clear();
-            volume.resize(x.len(), Vec3::zeros());
-            system.add_volume_forces(x, volume);
+            forces.clear();
+            forces.resize(x.len(), Vec3::zeros());
+            system.add_volume_forces(x, forces);
+            if !system.terms().is_empty() {
+                for ((v, xi), x0i) in out.v.iter_mut().zip(x.iter()).zip(x0) {
+                    *v = (xi - x0i) / dt;
+                }
+                for term in system.terms() {
+                    term.force(system, x, &out.v, forces);
+                }
+            }
             // The three coordinates' right-hand sides, one after the other,
             // solved in one pass over the factor.
             let rhs = &mut prefactored.rhs;
@@ -188,7 +197,7 @@ impl Integrator for FastMassSpring {
                 for (i, &u) in prefactored.unknown.iter().enumerate() {
                     if u != u32::MAX {
                         rhs[u as usize] =
-                            masses[i] * (y[i][c] + h2 * gravity[c]) + h2 * volume[i][c];
+                            masses[i] * (y[i][c] + h2 * gravity[c]) + h2 * forces[i][c];
                     }
                 }
                 for (s, ds) in system.springs().iter().zip(d.iter()) {
