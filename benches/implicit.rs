@@ -13,11 +13,9 @@
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use faer::sparse::linalg::matmul::sparse_dense_matmul;
 use faer::{Accum, MatMut, MatRef, Par};
-use hooke::core::CompressedSprings;
-use hooke::implicit::internals::{
-    Assembler, BlockJacobi, BlockMatrix, Filter, Linearization, Pattern, SparseCholesky, cg,
-};
-use hooke::implicit::{Implicit, PcgSettings};
+use hooke::core::{At, CompressedSprings, StepStart};
+use hooke::implicit::internals::{BlockJacobi, BlockMatrix, Filter, Pattern, SparseCholesky, cg};
+use hooke::implicit::{Implicit, PcgSettings, Terms};
 use hooke::prelude::*;
 
 #[allow(dead_code)] // the benches use a few of the tests' helpers
@@ -63,23 +61,31 @@ struct Assembled {
     filters: Vec<Filter>,
 }
 
-fn assemble(system: &System, state: &State, assembler: &mut Assembler, out: &mut Assembled) {
-    let n = system.particle_count();
-    let u: Vec<Vec3> = state.velocities().iter().map(|v| H * v).collect();
-    let inertia = vec![Vec3::zeros(); n];
-    let lin = Linearization {
-        positions: state.positions(),
-        velocities: state.velocities(),
-        displacement: Some(&u),
-        inertia: &inertia,
+/// Baraff & Witkin's linearised step at the start of a step from `state`
+/// (the dampers' directions frozen there), assembled by `terms`.
+fn assemble(system: &System, state: &State, terms: &mut Terms, out: &mut Assembled) {
+    let (x, v) = (state.positions(), state.velocities());
+    let u: Vec<Vec3> = v.iter().map(|v| H * v).collect();
+    let step = StepStart {
+        x,
+        v,
+        time: 0.0,
+        h: H,
         beta_h: H,
-        compressed: CompressedSprings::Clamped,
-        freeze_directions: true,
     };
-    assembler
+    terms.begin(system, &step);
+    let at = At {
+        x,
+        v,
+        v_tilde: v,
+        beta_h: H,
+        displacement: Some(&u),
+        compressed: CompressedSprings::Clamped,
+    };
+    terms
         .assemble(
             system,
-            &lin,
+            &at,
             &mut out.matrix,
             &mut out.jacobi,
             &mut out.rhs,
@@ -164,9 +170,9 @@ fn pattern_and_refill(c: &mut Criterion) {
         for (label, ratio) in STIFFNESS {
             let (system, state) = sheet(side, ratio);
             let mut out = assembled(&system, &state);
-            let mut assembler = Assembler::default();
+            let mut terms = Terms::new(&system).unwrap();
             group.bench_with_input(BenchmarkId::new(label, side), &side, |b, _| {
-                b.iter(|| assemble(&system, &state, &mut assembler, &mut out));
+                b.iter(|| assemble(&system, &state, &mut terms, &mut out));
             });
         }
     }

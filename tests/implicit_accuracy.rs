@@ -4,11 +4,9 @@
 
 mod common;
 
-use hooke::core::{CompressedSprings, ForceEvaluator};
-use hooke::implicit::internals::{
-    Assembler, BlockJacobi, BlockMatrix, Filter, Linearization, Pattern, SparseCholesky, cg,
-};
-use hooke::implicit::{ErrorControl, Implicit, LinearSolver, PcgSettings};
+use hooke::core::{At, CompressedSprings, ForceEvaluator};
+use hooke::implicit::internals::{BlockJacobi, BlockMatrix, Filter, Pattern, SparseCholesky, cg};
+use hooke::implicit::{ErrorControl, Implicit, LinearSolver, PcgSettings, Terms};
 use hooke::prelude::*;
 
 fn pcg(tolerance: f64) -> LinearSolver {
@@ -365,17 +363,17 @@ fn filtered_solvers_agree_for_every_kind_of_constraint() {
     let mut a = BlockMatrix::zeros(Pattern::new(&system).unwrap());
     let (mut jacobi, mut rhs) = (BlockJacobi::default(), vec![Vec3::zeros(); n]);
     let u: Vec<Vec3> = state.velocities().iter().map(|v| 0.05 * v).collect();
-    let lin = Linearization {
-        positions: state.positions(),
-        velocities: state.velocities(),
-        displacement: Some(&u),
-        inertia: &vec![Vec3::zeros(); n],
+    let at = At {
+        x: state.positions(),
+        v: state.velocities(),
+        v_tilde: state.velocities(),
         beta_h: 0.05,
+        displacement: Some(&u),
         compressed: CompressedSprings::Clamped,
-        freeze_directions: true,
     };
-    Assembler::default()
-        .assemble(&system, &lin, &mut a, &mut jacobi, &mut rhs, 0.0)
+    Terms::new(&system)
+        .unwrap()
+        .assemble(&system, &at, &mut a, &mut jacobi, &mut rhs, 0.0)
         .unwrap();
     let normal = Vec3::new(1.0, 2.0, 2.0) / 3.0;
     let filters: Vec<Filter> = (0..n)

@@ -6,10 +6,10 @@
 
 use faer::sparse::linalg::matmul::sparse_dense_matmul;
 use faer::{Accum, MatMut, MatRef, Par};
-use hooke::core::{CompressedSprings, TetHessian};
+use hooke::core::{At, CompressedSprings, StepStart, TetHessian};
+use hooke::implicit::Terms;
 use hooke::implicit::internals::{
-    Assembler, BlockJacobi, BlockMatrix, Linearization, PARALLEL_MIN_ELEMENTS,
-    PARALLEL_MIN_PARTICLES, Pattern,
+    BlockJacobi, BlockMatrix, PARALLEL_MIN_ELEMENTS, PARALLEL_MIN_PARTICLES, Pattern,
 };
 use hooke::prelude::*;
 use hooke::scenes::{Lattice, TetSplit, Volume};
@@ -35,20 +35,19 @@ fn parallel_assembly_and_product_match_sequential_computations() {
     let (x, v) = (state.positions(), state.velocities());
     let h = 0.01;
     let u: Vec<Vec3> = v.iter().map(|vi| h * vi).collect();
-    let inertia = vec![Vec3::zeros(); n];
     let mut a = BlockMatrix::zeros(Pattern::new(&system).unwrap());
     let (mut jacobi, mut b) = (BlockJacobi::default(), vec![Vec3::zeros(); n]);
-    let lin = Linearization {
-        positions: x,
-        velocities: v,
-        displacement: Some(&u),
-        inertia: &inertia,
+    let at = At {
+        x,
+        v,
+        v_tilde: v,
         beta_h: h,
+        displacement: Some(&u),
         compressed: CompressedSprings::Clamped,
-        freeze_directions: true,
     };
-    Assembler::default()
-        .assemble(&system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+    Terms::new(&system)
+        .unwrap()
+        .assemble(&system, &at, &mut a, &mut jacobi, &mut b, 0.0)
         .unwrap();
 
     // Sequentially, from the spring formulas: A = M + hC + h²K, b = h(f − K u).
@@ -142,20 +141,28 @@ fn parallel_element_blocks_match_sequential_sums() {
         .collect();
     let v = vec![Vec3::zeros(); n];
     let h = 0.01;
-    let lin = Linearization {
-        positions: &x,
-        velocities: &v,
-        displacement: None,
-        inertia: &v,
+    let at = At {
+        x: &x,
+        v: &v,
+        v_tilde: &v,
         beta_h: h,
+        displacement: None,
         compressed: CompressedSprings::Clamped,
-        freeze_directions: true,
+    };
+    let step = StepStart {
+        x: &x,
+        v: &v,
+        time: 0.0,
+        h,
+        beta_h: h,
     };
     let [a, a_springs] = [&system, &springs_only].map(|system| {
         let mut a = BlockMatrix::zeros(Pattern::new(system).unwrap());
         let (mut jacobi, mut b) = (BlockJacobi::default(), vec![Vec3::zeros(); n]);
-        Assembler::default()
-            .assemble(system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+        let mut terms = Terms::new(system).unwrap();
+        terms.begin(system, &step);
+        terms
+            .assemble(system, &at, &mut a, &mut jacobi, &mut b, 0.0)
             .unwrap();
         (a, b)
     });

@@ -1,8 +1,9 @@
 //! Helpers shared by the integration tests and the benches (which include
 //! this file by its path).
 
-use hooke::core::CompressedSprings;
-use hooke::implicit::internals::{Assembler, BlockJacobi, BlockMatrix, Linearization, Pattern};
+use hooke::core::{At, CompressedSprings};
+use hooke::implicit::Terms;
+use hooke::implicit::internals::{BlockJacobi, BlockMatrix, Pattern};
 use hooke::prelude::*;
 use hooke::scenes::{Corner, Mass, Springs, TetSplit, Volume};
 
@@ -57,17 +58,17 @@ pub fn linearised_step(
     let mut b = vec![Vec3::zeros(); n];
     let mut jacobi = BlockJacobi::default();
     let u: Vec<Vec3> = state.velocities().iter().map(|v| h * v).collect();
-    let lin = Linearization {
-        positions: state.positions(),
-        velocities: state.velocities(),
-        displacement: Some(&u),
-        inertia: &vec![Vec3::zeros(); n],
+    let at = At {
+        x: state.positions(),
+        v: state.velocities(),
+        v_tilde: state.velocities(),
         beta_h: h,
+        displacement: Some(&u),
         compressed: CompressedSprings::Clamped,
-        freeze_directions: true,
     };
-    Assembler::default()
-        .assemble(system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+    Terms::new(system)
+        .unwrap()
+        .assemble(system, &at, &mut a, &mut jacobi, &mut b, 0.0)
         .unwrap();
     (a, b, jacobi)
 }

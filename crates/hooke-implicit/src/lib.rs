@@ -6,11 +6,13 @@
 //! step is stable at any step size (see [`Implicit`] for the equations).
 //! Per step:
 //!
-//! 1. **Assembly** (`Assembler`): the spring Hessian
-//!    blocks `H` and damping blocks `c d dᵀ` from `hooke-core` are combined
-//!    into `A = M + βh C + β²h² K` and the right-hand side, in two parallel
-//!    passes that never allocate: one per spring, one per block row. The
-//!    `Pattern` comes from the topology and is built once.
+//! 1. **Assembly** ([`Terms`]): each term of the step's potential — the
+//!    inertia, gravity, air damping, the springs (their Hessian blocks `H`
+//!    and damping blocks `c d dᵀ` from `hooke-core`, in two parallel passes
+//!    that never allocate: one per spring, one per block row), volume
+//!    elements, contact and the system's own terms — adds itself into
+//!    `A = M + βh C + β²h² K` and the right-hand side. The `Pattern` comes
+//!    from the topology and is built once.
 //! 2. **Solve** ([`LinearSolver`]): `cg::solve` (Baraff–Witkin's modified
 //!    PCG, pins and other per-particle constraints acting through the
 //!    `Filter` inside the loop) preconditioned by block-Jacobi, by a
@@ -127,18 +129,18 @@ pub use linear::cg::PcgSettings;
 pub use linear::cholesky::{Supernodes, WeakSprings};
 pub use linear::solver::{AmgRenewal, AutoSettings, LinearSolver};
 pub use minimize::fast_mass_spring::FastMassSpring;
+pub use minimize::terms::Terms;
 pub use step::error_control::{self, ErrorControl};
 pub use step::implicit::Implicit;
 pub use step::scheme::{Minimizer, Scheme};
 
-/// The building blocks of a step — assembly, the block matrix and its
-/// pattern, the filters, PCG, sparse Cholesky and multigrid — for the
+/// The building blocks of a step — the block matrix and its pattern, the
+/// filters, PCG, sparse Cholesky and multigrid — for the
 /// workspace's tests and benchmarks. Not part of the supported API: an
 /// integrator is configured through [`Implicit`] and [`LinearSolver`].
 #[doc(hidden)]
 pub mod internals {
     pub use crate::linear::amg::{self, Amg, AmgInfo, AmgSettings};
-    pub use hooke_core::SymBlock;
     pub use crate::linear::cg::{self, BlockJacobi};
     pub use crate::linear::cholesky::{
         CholeskyError, CholeskyInfo, FactorPreconditioner, FillOrdering, SparseCholesky,
@@ -147,7 +149,6 @@ pub mod internals {
     pub use crate::linear::matrix::BlockMatrix;
     pub use crate::linear::pattern::Pattern;
     pub use crate::linear::vector::PARALLEL_MIN_PARTICLES;
-    pub use crate::minimize::assembly::Assembler;
-    pub use crate::minimize::linearization::Linearization;
-    pub use crate::minimize::volume::PARALLEL_MIN_ELEMENTS;
+    pub use crate::minimize::terms::PARALLEL_MIN_ELEMENTS;
+    pub use hooke_core::SymBlock;
 }

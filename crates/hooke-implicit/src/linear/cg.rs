@@ -1,9 +1,7 @@
 //! Baraff–Witkin's modified preconditioned conjugate gradient: constraints
 //! act through per-particle filters inside the loop.
 
-use hooke_core::{Parameter, ParameterError, Vec3};
-
-use crate::linear::block::SymBlock;
+use hooke_core::{Parameter, ParameterError, SymBlock, Vec3};
 
 use crate::linear::filter::{Filter, project};
 use crate::linear::matrix::BlockMatrix;
@@ -34,10 +32,8 @@ pub trait Preconditioner {
 }
 
 /// Block-Jacobi preconditioner: `P = blockdiag(A)`, applied with the inverses
-/// of the 3x3 diagonal blocks, which [`Assembler::assemble`] fills as it
-/// assembles `A`.
-///
-/// [`Assembler::assemble`]: crate::internals::Assembler::assemble
+/// of the 3x3 diagonal blocks, which [`Terms::assemble`](crate::Terms::assemble)
+/// fills as it assembles `A`.
 #[derive(Debug, Clone, Default)]
 pub struct BlockJacobi {
     pub(crate) inverses: Vec<SymBlock>,

@@ -1,11 +1,13 @@
 //! [`BlockMatrix`]: the assembled system matrix in 3x3 blocks, one per spring.
 
+use std::any::Any;
 use std::ops::Range;
+use std::sync::Arc;
 
-use hooke_core::{Mat3, Vec3};
+use hooke_core::{Hessian, Mat3, SymBlock, Vec3};
 
-use crate::linear::block::SymBlock;
 use crate::linear::pattern::Pattern;
+use crate::linear::vector::for_each_row2;
 #[cfg(feature = "parallel")]
 use crate::linear::vector::{MIN_CHUNK, PARALLEL_MIN_PARTICLES};
 
@@ -51,10 +53,15 @@ use crate::linear::vector::{MIN_CHUNK, PARALLEL_MIN_PARTICLES};
 /// diagonal blocks the preconditioners read also carry, for each element
 /// block between particles no spring joins, a bound that keeps them
 /// positive definite without it
-/// ([`Assembler`](crate::internals::Assembler)).
+/// ([`Terms::assemble`](crate::Terms::assemble)).
+///
+/// The terms of the step's potential write into it as a [`Hessian`]: the
+/// mass and air-damping terms into `m̃ᵢ`, the springs into their slots,
+/// every other block as above.
 #[derive(Debug, Clone)]
 pub struct BlockMatrix {
-    pub(crate) pattern: Pattern,
+    /// The pattern, shared with the springs' term that fills its slots.
+    pub(crate) pattern: Arc<Pattern>,
     pub(crate) diagonal: Vec<SymBlock>,
     pub(crate) mass: Vec<f64>,
     pub(crate) springs: Vec<SymBlock>,
@@ -70,24 +77,34 @@ pub struct BlockMatrix {
     pub(crate) extra_at_slots: Vec<Mat3>,
 }
 
-/// Where a term's Hessian blocks go as it adds itself to a Newton system:
-/// the system's [`BlockMatrix`], or — for the quasi-Newton step, which
-/// assembles no matrix — the diagonal blocks alone ([`DiagonalBlocks`]),
-/// or nowhere (`()`).
-pub(crate) trait HessianBlocks {
-    /// Adds the symmetric block `B` to particle `i`'s diagonal.
-    fn add_row(&mut self, i: usize, block: SymBlock);
-    /// Adds `B` at `(i, j)` and `Bᵀ` at `(j, i)`, `i ≠ j`.
-    fn add_pair(&mut self, i: usize, j: usize, block: Mat3);
-}
+/// The contact module's name for the sink its terms write into.
+pub(crate) use hooke_core::Hessian as HessianBlocks;
 
-impl HessianBlocks for BlockMatrix {
+/// The matrix as a term's sink: a diagonal block goes to its particle's
+/// diagonal and the extra rows, a block between particles to its slot or
+/// the extra pairs, a scaled identity to `m̃ᵢ` and the diagonal; the
+/// springs' and volume elements' terms fill their slots through
+/// [`Hessian::as_any_mut`].
+impl Hessian for BlockMatrix {
     fn add_row(&mut self, i: usize, block: SymBlock) {
         self.add_extra_row(i, block);
     }
 
     fn add_pair(&mut self, i: usize, j: usize, block: Mat3) {
         self.add_extra_pair(i, j, block);
+    }
+
+    fn add_identity(&mut self, n: usize, scale: &(dyn Fn(usize) -> f64 + Sync)) {
+        debug_assert_eq!(n, self.rows());
+        for_each_row2(&mut self.diagonal, &mut self.mass, |i, diagonal, mass| {
+            let s = scale(i);
+            diagonal.add_assign(&SymBlock::scaled_identity(s));
+            *mass += s;
+        });
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn Any> {
+        Some(self)
     }
 }
 
@@ -96,7 +113,7 @@ impl HessianBlocks for BlockMatrix {
 #[derive(Debug, Default)]
 pub(crate) struct DiagonalBlocks(pub(crate) Vec<(u32, SymBlock)>);
 
-impl HessianBlocks for DiagonalBlocks {
+impl Hessian for DiagonalBlocks {
     fn add_row(&mut self, i: usize, block: SymBlock) {
         self.0.push((i as u32, block));
     }
@@ -104,17 +121,11 @@ impl HessianBlocks for DiagonalBlocks {
     fn add_pair(&mut self, _: usize, _: usize, _: Mat3) {}
 }
 
-/// No blocks: the gradient alone.
-impl HessianBlocks for () {
-    fn add_row(&mut self, _: usize, _: SymBlock) {}
-
-    fn add_pair(&mut self, _: usize, _: usize, _: Mat3) {}
-}
-
 impl BlockMatrix {
     /// A zero matrix with the given pattern.
     #[must_use]
-    pub fn zeros(pattern: Pattern) -> Self {
+    pub fn zeros(pattern: impl Into<Arc<Pattern>>) -> Self {
+        let pattern = pattern.into();
         let rows = pattern.rows();
         let slots = pattern.slots();
         Self {
@@ -131,7 +142,7 @@ impl BlockMatrix {
     /// The pattern alone, without values, for a step that assembles no
     /// matrix: the quasi-Newton step reads the springs' slots only, and on
     /// a million particles the values would cost 344 bytes a particle.
-    pub(crate) fn unassembled(pattern: Pattern) -> Self {
+    pub(crate) fn unassembled(pattern: Arc<Pattern>) -> Self {
         Self {
             pattern,
             diagonal: Vec::new(),
@@ -143,8 +154,16 @@ impl BlockMatrix {
         }
     }
 
-    /// Forgets the contact and element blocks (the diagonal blocks are
-    /// overwritten by the next assembly).
+    /// Zeroes the diagonal blocks and `m̃`, and forgets the contact and
+    /// element blocks, for the terms to add themselves afresh (the
+    /// springs' blocks are overwritten).
+    pub(crate) fn clear(&mut self) {
+        self.diagonal.fill(SymBlock::default());
+        self.mass.fill(0.0);
+        self.clear_extra();
+    }
+
+    /// Forgets the contact and element blocks.
     pub(crate) fn clear_extra(&mut self) {
         self.extra_rows.clear();
         self.extra_pairs.clear();

@@ -4,10 +4,9 @@
 //! condition, full steps extended where the model undershoots, collision
 //! detection bounding every motion.
 
-use hooke_core::{StepError, Vec3};
+use hooke_core::{Potential, StepError, Vec3};
 
 use crate::linear::vector::for_each_row;
-use crate::minimize::assembly::Potential;
 use crate::minimize::newton::{Iterates, Newton, Outcome};
 
 /// The sufficient-decrease constant `c` of the Armijo condition
@@ -121,8 +120,8 @@ impl Newton<'_> {
             // A quasi-Newton step's model overestimates the curvature of
             // soft modes and so its predicted decrease; it is at the floor
             // only once the last iterate lowered Φ by no more than rounding.
-            let floor = 0.5 * slope.abs() <= current.rounding
-                && (self.quasi.is_none() || previous - current.value <= current.rounding);
+            let floor = 0.5 * slope.abs() <= current.rounding()
+                && (self.quasi.is_none() || previous - current.value <= current.rounding());
             // The full step's Φ, once the quasi-Newton stopping rule needed it.
             let mut evaluated = None;
             if limit >= 1.0 && (outcome.residual <= tolerance || floor) {
@@ -171,9 +170,7 @@ impl Newton<'_> {
                     // the step's own motion again for the backtracking.
                     self.limit(it.v, it.delta, 1.0);
                 }
-                if let Some(contact) = self.contact.as_deref_mut() {
-                    contact.majorize_friction();
-                }
+                self.terms.full_step_failed();
             }
             let mut alpha = if limit >= 1.0 { 0.5 } else { limit };
             loop {
@@ -258,18 +255,17 @@ impl Newton<'_> {
     }
 
     /// The longest multiple `α ≤ longest` of the step `δ` from `v` that
-    /// collision detection allows: `longest` without contact terms,
-    /// otherwise `longest · τ` with `τ` the fraction of the motion
-    /// `βh longest δ` that keeps every pair at a tenth of its gap.
+    /// the barriers allow: `longest` without barriers, otherwise
+    /// `longest · τ` with `τ` the fraction of the motion `βh longest δ` that
+    /// keeps every contact pair at a tenth of its gap.
     fn limit(&mut self, v: &[Vec3], delta: &[Vec3], longest: f64) -> f64 {
-        if self.contact.is_none() {
+        if !self.terms.has_barrier() {
             return longest;
         }
         self.positions(v);
         let scale = self.beta_h * longest;
         for_each_row(self.motion, |i, m| *m = scale * delta[i]);
-        let contact = self.contact.as_deref_mut().expect("checked above");
-        longest * contact.limit(self.system, self.x, self.motion)
+        longest * self.terms.limit(self.system, self.x, self.motion)
     }
 }
 

@@ -4,17 +4,14 @@
 //! `line_search` module iterates them. [`Implicit`](crate::Implicit)'s docs
 //! give the equations.
 
-use hooke_core::{CompressedSprings, StepError, StepReport, System, Vec3};
+use hooke_core::{At, CompressedSprings, Potential, StepError, StepReport, System, Vec3};
 
 use crate::linear::matrix::DiagonalBlocks;
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::Topology;
-use crate::linear::vector::{dot, for_each_row, for_each_row2};
-use crate::minimize::assembly::{Assembler, Potential};
-use crate::minimize::contact::Contact;
-use crate::minimize::linearization::Linearization;
+use crate::linear::vector::{dot, for_each_row};
 use crate::minimize::quasi_newton::QuasiNewton;
-use crate::minimize::residual::{Point, check_finite};
+use crate::minimize::terms::{Terms, check_finite};
 
 /// How Newton's method ended.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,23 +35,18 @@ pub(crate) struct Iterates<'a> {
 }
 
 /// What one (sub)step's Newton iterations share: the step's predictor
-/// `x = x̃ + βh v` and `ṽ`, the linear solver and its topology, the
-/// contact terms, and scratch for positions, the inertia term, the
-/// right-hand side and a motion.
+/// `x = x̃ + βh v` and `ṽ`, the linear solver and its topology, the terms
+/// of `Φ`, and scratch for positions, the right-hand side and a motion.
 pub(crate) struct Newton<'a> {
     pub(crate) system: &'a System,
     pub(crate) solve: Solve<'a>,
     pub(crate) topology: &'a mut Topology,
-    pub(crate) assembler: &'a mut Assembler,
-    /// The contact terms of `Φ`, in a system with obstacles or colliding
-    /// surfaces.
-    pub(crate) contact: Option<&'a mut Contact>,
+    pub(crate) terms: &'a mut Terms,
     pub(crate) compressed: CompressedSprings,
     pub(crate) x_tilde: &'a [Vec3],
     pub(crate) v_tilde: &'a [Vec3],
     pub(crate) beta_h: f64,
     pub(crate) x: &'a mut [Vec3],
-    pub(crate) inertia: &'a mut [Vec3],
     pub(crate) b: &'a mut [Vec3],
     /// Scratch for the motion `βh α δ` that collision detection checks.
     pub(crate) motion: &'a mut [Vec3],
@@ -70,7 +62,7 @@ pub(crate) struct Newton<'a> {
     /// The quasi-Newton state, when the directions are L-BFGS's instead of
     /// Newton's.
     pub(crate) quasi: Option<&'a mut QuasiNewton>,
-    /// Whether `b` holds `−∇Φ`, without the contact terms, at the point
+    /// Whether `b` holds `−∇Φ`, without the barriers' terms, at the point
     /// [`Newton::potential`] evaluated last (the quasi-Newton step's, whose
     /// next direction reuses it where that point becomes the iterate).
     pub(crate) evaluated_residual: bool,
@@ -83,32 +75,18 @@ impl Newton<'_> {
         for_each_row(self.x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
     }
 
-    /// `Φ(v)`, its contact terms included (infinite where a gap is not
-    /// positive), and its rounding level. For the quasi-Newton step, the
-    /// same pass over the springs leaves `−∇Φ(v)` without the contact terms
-    /// in `b` ([`Newton::evaluated_residual`]).
+    /// `Φ(v)` (infinite where a barrier's gap is not positive) and its
+    /// magnitude. For the quasi-Newton step, the same passes leave `−∇Φ(v)`
+    /// without the barriers' terms in `b` ([`Newton::evaluated_residual`]).
     pub(crate) fn potential(&mut self, v: &[Vec3]) -> Potential {
         self.positions(v);
-        let (system, pattern, beta_h) = (self.system, self.topology.pattern(), self.beta_h);
         self.evaluated_residual = self.quasi.is_some();
-        let mut potential = if self.evaluated_residual {
-            let point = Point {
-                x: self.x,
-                v,
-                v_tilde: self.v_tilde,
-                beta_h,
-            };
-            self.assembler.evaluate(system, pattern, point, self.b)
+        let at = iterate(self.x, v, (self.v_tilde, self.beta_h), self.compressed);
+        if self.evaluated_residual {
+            self.terms.gradient(self.system, &at, self.b)
         } else {
-            self.assembler
-                .potential(system, pattern, self.x, v, self.v_tilde, beta_h)
-        };
-        if let Some(contact) = self.contact.as_deref_mut() {
-            let terms = contact.value(system, self.x, v, beta_h);
-            potential.value += terms;
-            potential.rounding += f64::EPSILON * terms.abs();
+            self.terms.value(self.system, &at)
         }
-        potential
     }
 
     /// The starting point of the iteration: `v`, or `trial` (swapped into
@@ -149,26 +127,19 @@ impl Newton<'_> {
         slope.abs().sqrt() / velocity_scale(self.system, next, v0, self.beta_h)
     }
 
-    /// Newton's step `δ` at `v`: assembles `(M + βh C + β²h² K) δ = −∇Φ(v)`
-    /// with the exact stiffness blocks of springs and volume elements
-    /// (unless an earlier iteration of the same step needed the clamp,
-    /// [`Newton::hessian`]), or — where that system is not
-    /// positive definite or its solution does not descend, and the
-    /// integrator clamps compressed springs — with compressed springs
-    /// clamped and the elements' Hessians projected, adds the contact
-    /// terms' gradients and projected Hessians,
-    /// and solves it in the free directions. Returns the slope `∇Φ·δ`.
+    /// Newton's step `δ` at `v`: assembles the terms' `(M + βh C + β²h² K)
+    /// δ = −∇Φ(v)` with their exact Hessians (unless an earlier iteration
+    /// of the same step needed the stand-ins, [`Newton::hessian`]), or —
+    /// where that system is not positive definite or its solution does not
+    /// descend, and the integrator clamps compressed springs — with their
+    /// positive-semidefinite stand-ins (compressed springs clamped, the
+    /// elements' and barriers' Hessians projected), and solves it in the
+    /// free directions. Returns the slope `∇Φ·δ`.
     ///
     /// # Errors
     /// Assembly and solver errors.
     pub(crate) fn direction(&mut self, v: &[Vec3], delta: &mut [Vec3]) -> Result<f64, StepError> {
-        let (system, x_tilde, v_tilde, beta_h) =
-            (self.system, self.x_tilde, self.v_tilde, self.beta_h);
-        let masses = system.masses();
-        for_each_row2(self.x, self.inertia, |i, x, inertia| {
-            *x = x_tilde[i] + beta_h * v[i];
-            *inertia = -masses[i] * (v[i] - v_tilde[i]);
-        });
+        self.positions(v);
         if let Some(quasi) = self.quasi.take() {
             let slope = self.quasi_direction(quasi, v, delta);
             self.quasi = Some(quasi);
@@ -176,27 +147,13 @@ impl Newton<'_> {
         }
         let mut hessian = self.hessian;
         loop {
-            let lin = Linearization {
-                positions: self.x,
-                velocities: v,
-                displacement: None,
-                inertia: self.inertia,
-                beta_h,
-                compressed: hessian,
-                freeze_directions: false,
-            };
+            let at = iterate(self.x, v, (self.v_tilde, self.beta_h), hessian);
             delta.fill(Vec3::zeros());
             let last = hessian == self.compressed;
             let solved = self
                 .solve
-                .assemble(self.assembler, self.topology, &lin, self.b)
+                .assemble(self.terms, self.topology, &at, self.b)
                 .and_then(|()| {
-                    if let Some(contact) = self.contact.as_deref_mut() {
-                        let a = self.topology.matrix_mut();
-                        let assembled = a.extra_rows.len();
-                        contact.add(system, self.x, v, beta_h, self.b, a);
-                        self.topology.contacts_added(assembled);
-                    }
                     self.solve
                         .solve(self.topology, self.x, self.b, delta, self.pcg, self.report)
                 });
@@ -213,9 +170,9 @@ impl Newton<'_> {
     }
 
     /// The quasi-Newton step at `v` (see the `quasi_newton` module), whose
-    /// positions and inertia term [`Newton::direction`] filled: the
-    /// residual `−∇Φ(v)` with the contact terms' gradients, without any
-    /// matrix, then L-BFGS's two-loop recursion. Returns the slope `∇Φ·δ`.
+    /// positions [`Newton::direction`] filled: the residual `−∇Φ(v)`, the
+    /// barriers' gradients included, without any matrix, then L-BFGS's
+    /// two-loop recursion. Returns the slope `∇Φ·δ`.
     ///
     /// # Errors
     /// [`StepError::NonFiniteSystem`] for a residual that is not finite.
@@ -225,34 +182,44 @@ impl Newton<'_> {
         v: &[Vec3],
         delta: &mut [Vec3],
     ) -> Result<f64, StepError> {
-        let (system, beta_h) = (self.system, self.beta_h);
+        let system = self.system;
+        let at = iterate(self.x, v, (self.v_tilde, self.beta_h), self.compressed);
         if !std::mem::take(&mut self.evaluated_residual) {
-            let point = Point {
-                x: self.x,
-                v,
-                v_tilde: self.v_tilde,
-                beta_h,
-            };
-            let pattern = self.topology.pattern();
-            self.assembler.evaluate(system, pattern, point, self.b);
+            self.terms.gradient(system, &at, self.b);
         }
         check_finite(system, self.b, self.solve.time)?;
-        if let Some(contact) = self.contact.as_deref_mut() {
-            // The contact terms' gradients join the residual. At the step's
-            // first iterate their diagonal Hessian blocks give the stand-in
-            // on H₀; later iterations keep no blocks.
-            if quasi.pending() {
-                let mut diagonal = DiagonalBlocks::default();
-                contact.add(system, self.x, v, beta_h, self.b, &mut diagonal);
-                quasi.add_stand_in(system, &diagonal.0, self.solve.time)?;
-            } else {
-                contact.add(system, self.x, v, beta_h, self.b, &mut ());
-            }
+        // The barriers' gradients join the residual. At the step's first
+        // iterate their diagonal Hessian blocks give the stand-in on H₀;
+        // later iterations keep no blocks.
+        if quasi.pending() {
+            let mut diagonal = DiagonalBlocks::default();
+            self.terms.add_barriers(system, &at, self.b, &mut diagonal);
+            quasi.add_stand_in(system, &diagonal.0, self.solve.time)?;
+        } else {
+            self.terms.add_barriers(system, &at, self.b, &mut ());
         }
         self.report.linear_solves += 1;
         let slope = quasi.direction(system, self.b, v, delta);
         self.report.linear_solver = quasi.solver_name();
         Ok(slope)
+    }
+}
+
+/// The iterate `v` at its positions `x = x̃ + βh v` for the predictor's `ṽ`
+/// and `βh`, with the Hessians `compressed` says.
+fn iterate<'a>(
+    x: &'a [Vec3],
+    v: &'a [Vec3],
+    (v_tilde, beta_h): (&'a [Vec3], f64),
+    compressed: CompressedSprings,
+) -> At<'a> {
+    At {
+        x,
+        v,
+        v_tilde,
+        beta_h,
+        displacement: None,
+        compressed,
     }
 }
 

@@ -30,8 +30,8 @@
 //! `sₖ = vₖ₊₁ − vₖ`, `yₖ = ∇Φ(vₖ₊₁) − ∇Φ(vₖ)` (Nocedal & Wright,
 //! *Numerical Optimization*, Algorithm 7.4) and three pairs of triangular
 //! solves with `H₀`'s factor; no 3×3-block matrix is assembled, and the
-//! gradient comes from the line search's pass over the springs that
-//! evaluated `Φ` at the accepted point (`Assembler::evaluate`). A pair
+//! gradient comes from the line search's passes over the terms that
+//! evaluated `Φ` at the accepted point (`Terms::gradient`). A pair
 //! with `sᵀy ≤ 0` (where `Φ` is not convex along `s`: compressed springs,
 //! inverted volume elements) carries no curvature and is skipped, so the
 //! implied Hessian stays positive definite and every direction descends.
@@ -47,16 +47,15 @@
 //! Contact barriers are far stiffer than springs near their pairs, and a
 //! history of a few pairs cannot learn them: on a 10×10 cloth landing on
 //! a sphere, L-BFGS on `H₀` alone took 2 500–5 000 iterations a step
-//! where Newton took 20. So in a (sub)step with contact terms, `H₀` gains
+//! where Newton took 20. So in a (sub)step with barrier terms, `H₀` gains
 //! a diagonal stand-in for them at the step's starting point — each
-//! particle's trace of its diagonal block of the contact terms' projected
+//! particle's trace of its diagonal block of the barriers' projected
 //! Hessian (an upper bound of the block's largest eigenvalue, exact for a
 //! particle against one obstacle) — and is factorized afresh.
 
-use hooke_core::{StepError, System, Vec3};
+use hooke_core::{StepError, SymBlock, System, Vec3};
 
 use crate::WeakSprings;
-use crate::linear::block::SymBlock;
 use crate::linear::vector::{dot, for_each_row};
 use crate::minimize::laplacian::{Inverse, Laplacian};
 

@@ -3,16 +3,17 @@
 //! starting points, the energy test, and the commit of an accepted step.
 //! [`Implicit`]'s docs give the equations.
 
-use hooke_core::{CompressedSprings, State, StepError, StepReport, System, Vec3};
+use hooke_core::{
+    At, CompressedSprings, State, StepError, StepReport, StepStart, System, Vec3, When,
+};
 
 use crate::linear::cholesky::WeakSprings;
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::topology;
 use crate::linear::vector::for_each_row;
-use crate::minimize::contact::Contact;
-use crate::minimize::linearization::Linearization;
 use crate::minimize::newton::{self, Iterates, Newton, velocity_scale};
-use crate::step::energy::{absorption, energy, pin_work, rounding};
+use crate::minimize::terms::Terms;
+use crate::step::energy::{absorption, rounding};
 use crate::step::implicit::Implicit;
 use crate::step::scheme::{Minimizer, Scheme};
 use crate::step::work::Work;
@@ -94,7 +95,6 @@ impl Implicit {
         let (x0, v0) = (state.positions(), state.velocities());
         let c = Coefficients::new(self.settings.scheme, h, previous);
         let beta_h = c.beta * h;
-        let masses = system.masses();
         let Work {
             b,
             dv,
@@ -107,7 +107,6 @@ impl Implicit {
             x_tilde,
             v_tilde,
             u,
-            inertia,
             x_prev,
             v_prev,
             x_earlier,
@@ -118,22 +117,26 @@ impl Implicit {
             x_tilde[i] = c.current * x0[i] - c.past * x_prev[i];
             v_tilde[i] = c.current * v0[i] - c.past * v_prev[i];
             u[i] = x_tilde[i] - x0[i] + beta_h * v0[i];
-            inertia[i] = masses[i] * (v_tilde[i] - v0[i]);
         }
         if previous.is_none() {
             dv.fill(Vec3::zeros());
         }
 
         let (compressed, strict) = (self.settings.compressed, self.settings.strict);
+        let terms = Terms::of(&mut self.terms, system)?;
+        let has_barrier = terms.has_barrier();
         let quasi = match self.settings.minimizer {
             Minimizer::QuasiNewton { history, carried } => {
-                let contact = Contact::present(system);
                 let inverse = (
                     self.settings.solver.initial_hessian_inverse(),
                     self.settings.weak_springs.unwrap_or(WeakSprings::Routed),
                 );
-                self.quasi
-                    .begin(system, (beta_h, contact), (history, carried, inverse), time)?;
+                self.quasi.begin(
+                    system,
+                    (beta_h, has_barrier),
+                    (history, carried, inverse),
+                    time,
+                )?;
                 Some(&mut self.quasi)
             }
             _ => None,
@@ -148,7 +151,7 @@ impl Implicit {
                     self.settings.supernodes,
                 ),
             ),
-            system,
+            (system, terms.pattern()),
         )?;
         let solve = Solve {
             system,
@@ -157,28 +160,24 @@ impl Implicit {
             forcing: 0.0,
         };
         let pinned = self.pins.begin(system, v0, time, h);
-        let mut contact = Contact::present(system).then(|| {
-            self.contact.begin(system, x0, time, h);
-            &mut self.contact
-        });
-        let has_contact = contact.is_some();
-        // Without contact, Baraff & Witkin's linearised step: the whole step
-        // when linearised, otherwise the first candidate for Newton's
-        // starting point; its assembly also freezes the dampers' directions
-        // at the step's start. With contact, and for the quasi-Newton step
-        // (which assembles no matrix and starts from vₙ), only the
-        // directions are frozen.
-        if has_contact || quasi.is_some() {
-            self.assembler
-                .freeze_directions(system, topology.pattern(), x0);
-        }
+        let step = StepStart {
+            x: x0,
+            v: v0,
+            time,
+            h,
+            beta_h,
+        };
+        terms.begin(system, &step);
         // The starting candidates: the first in `v`, a second in `trial`
-        // (none for the quasi-Newton step without contact).
-        let (lin_steps, second_start) = if let Some(contact) = contact.as_deref_mut() {
+        // (none for the quasi-Newton step without barriers). Without
+        // barriers, the first is Baraff & Witkin's linearised step: the
+        // whole step when linearised; the quasi-Newton step, which
+        // assembles no matrix, starts from vₙ.
+        let (lin_steps, second_start) = if let Some(start) = terms.start() {
             // Newton starts from the feasible positions of the step's start
             // or, if lower in Φ, from the inertial predictor vₙ + z as far
             // towards it as no pair comes closer than a tenth of its gap.
-            let (start, prescribed) = (contact.start(), &self.pins.prescribed);
+            let prescribed = &self.pins.prescribed;
             for_each_row(v, |i, v| {
                 *v = if system.is_pinned(i) {
                     v0[i] + prescribed[i]
@@ -189,7 +188,7 @@ impl Implicit {
             for_each_row(trial, |i, t| *t = v0[i] + prescribed[i] - v[i]);
             for_each_row(x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
             for_each_row(ahead, |i, a| *a = beta_h * trial[i]);
-            let tau = contact.limit(system, x, ahead);
+            let tau = terms.limit(system, x, ahead);
             for_each_row(trial, |i, t| *t = v[i] + tau * *t);
             (1, true)
         } else if quasi.is_some() {
@@ -197,16 +196,15 @@ impl Implicit {
             for_each_row(v, |i, v| *v = v0[i] + prescribed[i]);
             (0, false)
         } else {
-            let lin = Linearization {
-                positions: x0,
-                velocities: v0,
-                displacement: Some(u),
-                inertia,
+            let at = At {
+                x: x0,
+                v: v0,
+                v_tilde,
                 beta_h,
+                displacement: Some(u),
                 compressed,
-                freeze_directions: true,
             };
-            solve.assemble(&mut self.assembler, topology, &lin, b)?;
+            solve.assemble(terms, topology, &at, b)?;
             if pinned {
                 self.pins.prescribe(topology.matrix(), b);
             }
@@ -220,14 +218,12 @@ impl Implicit {
             system,
             solve,
             topology,
-            assembler: &mut self.assembler,
-            contact: contact.as_deref_mut(),
+            terms: &mut *terms,
             compressed,
             x_tilde,
             v_tilde,
             beta_h,
             x,
-            inertia,
             b,
             motion: u,
             pcg,
@@ -237,7 +233,7 @@ impl Implicit {
             quasi,
             evaluated_residual: false,
         };
-        let outcome = if linearized && !has_contact {
+        let outcome = if linearized && !has_barrier {
             newton::Outcome {
                 converged: true,
                 iterations: 1,
@@ -248,7 +244,7 @@ impl Implicit {
             // linearised step's velocities, or the feasible start) or at the
             // second (vₙ with the prescribed velocity changes applied, as far
             // as contact allows). Every Newton step then lies in the free
-            // directions. With contact, the linearised step is one Newton
+            // directions. With barriers, the linearised step is one Newton
             // step from there, bounded by collision detection.
             let start = newton.start(v, second_start.then_some(&mut *trial));
             let mut iterates = Iterates {
@@ -274,17 +270,13 @@ impl Implicit {
         };
         for_each_row(x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
 
-        // The energy test, the contact barrier counted as a potential.
-        let (mut before, magnitude_before) = energy(system, x0, v0);
-        let (mut after, magnitude_after) = energy(system, x, v);
+        // The energy test.
+        let before = terms.energy(system, x0, v0, When::Start);
+        let after = terms.energy(system, x, v, When::End);
         let two_step = c.past > 0.0;
-        let mut work = pin_work(system, x0, x);
-        if let Some(contact) = contact.as_deref_mut() {
-            before += contact.start_energy(system, x0, time);
-            after += contact.barrier_energy(system, x);
-            work += contact.obstacle_work(system, (x0, time), x, v);
-        }
-        let excess = after - before - work - rounding(magnitude_before.max(magnitude_after));
+        let work = terms.work(system, &step, x, v);
+        let excess =
+            after.value - before.value - work - rounding(before.magnitude.max(after.magnitude));
         // Converged backward-Euler steps are held to the energy test; BDF2's
         // two-step steps and the linearised step only report a gain. A gain
         // that the kinetic energy absorbs by moving the velocities less
@@ -346,7 +338,7 @@ impl Implicit {
                 }
             }
         }
-        let touching = contact.map_or(0, |contact| contact.end_step(system, x));
+        let touching = terms.end_step(system, x);
         state.commit(x, v, end.unwrap_or(time + h))?;
         // The buffers swapped out of the state hold xₙ, vₙ: BDF2's next
         // history, after xₙ₋₁ moves to the error estimate's.

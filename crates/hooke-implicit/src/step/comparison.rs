@@ -66,6 +66,7 @@ mod tests {
 
     use super::*;
     use crate::linear::cg::PcgSettings;
+    use crate::linear::pattern::Pattern;
     use crate::linear::solver::topology::topology;
     use crate::linear::solver::{AmgRenewal, LinearSolver};
 
@@ -82,11 +83,12 @@ mod tests {
         let ms = |t: f64| Duration::from_secs_f64(1e-3 * t);
         for ((elapsed, dt), kept) in [((20.0, 0.01), cholesky), ((15.0, 0.02), jacobi)] {
             let mut cached = None;
+            let pattern = std::sync::Arc::new(Pattern::new(&system).unwrap());
             let topology = topology(
                 &mut cached,
                 Some(cholesky),
                 (AmgRenewal::default(), Default::default()),
-                &system,
+                (&system, &pattern),
             )
             .unwrap();
             topology.compare_with(jacobi);

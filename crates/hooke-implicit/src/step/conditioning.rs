@@ -11,8 +11,9 @@
 //! ```
 //!
 //! `wᵢ = 1/√mᵢ` (zero for pinned particles), valid in every state because a
-//! spring's clamped stiffness block has norm at most `k`. A volume element
-//! adds its Hessian at rest, `κ V₀ ∇J ∇Jᵀ`, the same way,
+//! spring's clamped stiffness block has norm at most `k`. Each term of the
+//! step's potential adds its rates so ([`Term::rates`](hooke_core::Term::rates)):
+//! a volume element its Hessian at rest, `κ V₀ ∇J ∇Jᵀ`, as
 //! `wₐ Σ_b κ V₀ |∇ₐJ| |∇_bJ| w_b` at each vertex `a` (its Hessian grows
 //! with the deformation, so this one holds near rest only). A solve with
 //! `κ(h) ≫ 1/ε` cannot see the inertia of the stiff system's soft modes (at
@@ -23,6 +24,8 @@
 
 use hooke_core::System;
 
+use crate::minimize::terms::Terms;
+
 /// The longest substep of the last system stepped, kept until the system
 /// changes.
 #[derive(Debug, Default, Clone, Copy, PartialEq)]
@@ -32,13 +35,13 @@ pub(crate) struct LongestStep {
 }
 
 impl LongestStep {
-    /// The longest step of `system` at which `κ(h)` reaches `condition`
-    /// (see [`Rates::longest_step`]).
-    pub(crate) fn get(&mut self, system: &System, condition: f64) -> f64 {
+    /// The longest step of `system`, whose terms are `terms`, at which
+    /// `κ(h)` reaches `condition` (see [`Rates::longest_step`]).
+    pub(crate) fn get(&mut self, system: &System, terms: &Terms, condition: f64) -> f64 {
         match self.cached {
             Some((id, longest)) if id == system.id() => longest,
             _ => {
-                let longest = Rates::new(system).longest_step(condition);
+                let longest = Rates::new(system, terms).longest_step(condition);
                 self.cached = Some((system.id(), longest));
                 longest
             }
@@ -54,29 +57,13 @@ pub(crate) struct Rates {
 }
 
 impl Rates {
-    /// The bounds of `system` (see the module docs).
-    pub(crate) fn new(system: &System) -> Self {
+    /// The bounds of `system`, whose terms are `terms` (see the module
+    /// docs).
+    pub(crate) fn new(system: &System, terms: &Terms) -> Self {
         let w: Vec<f64> = system.inverse_masses().iter().map(|v| v.sqrt()).collect();
-        let gamma = system.air_damping().unwrap_or(0.0);
-        let mut stiffness = vec![0.0; w.len()];
-        let mut damping: Vec<f64> = w.iter().map(|w| gamma * w * w).collect();
-        for s in system.springs() {
-            let (a, b) = (w[s.i], w[s.j]);
-            stiffness[s.i] += s.stiffness * a * (a + b);
-            stiffness[s.j] += s.stiffness * b * (a + b);
-            damping[s.i] += s.damping * a * (a + b);
-            damping[s.j] += s.damping * b * (a + b);
-        }
-        for t in system.tets() {
-            let gradient = t.volume_gradient(system.initial_positions());
-            let reach: f64 = gradient
-                .iter()
-                .zip(t.vertices)
-                .map(|(g, i)| g.norm() * w[i])
-                .sum();
-            for (g, i) in gradient.iter().zip(t.vertices) {
-                stiffness[i] += t.modulus * t.rest_volume * g.norm() * w[i] * reach;
-            }
+        let (mut stiffness, mut damping) = (vec![0.0; w.len()], vec![0.0; w.len()]);
+        for t in terms.iter() {
+            t.rates(system, &w, &mut stiffness, &mut damping);
         }
         Self {
             stiffness: stiffness.into_iter().fold(0.0, f64::max),
@@ -105,20 +92,25 @@ mod tests {
 
     use super::*;
 
+    /// The bounds of `system`'s terms.
+    fn rates(system: &System) -> Rates {
+        Rates::new(system, &Terms::new(system).unwrap())
+    }
+
     #[test]
     fn an_oscillator_reaches_the_condition_at_its_frequency() {
         // One free mass m on a spring k to a pin: M⁻¹K = k/m = ω², and the
         // bound is exact, so h²ω² = κ − 1 at the longest step.
         let system = Oscillator::undamped(2.0, 8.0).system().unwrap();
-        let rates = Rates::new(&system);
+        let rates = rates(&system);
         let h = rates.longest_step(1e6 + 1.0);
         assert_relative_eq!(h * h * 4.0, 1e6, max_relative = 1e-12);
     }
 
     #[test]
     fn damping_shortens_the_longest_step() {
-        let undamped = Rates::new(&Oscillator::undamped(2.0, 8.0).system().unwrap());
-        let damped = Rates::new(&Oscillator::damped(2.0, 8.0, 3.0).system().unwrap());
+        let undamped = rates(&Oscillator::undamped(2.0, 8.0).system().unwrap());
+        let damped = rates(&Oscillator::damped(2.0, 8.0, 3.0).system().unwrap());
         let (a, b) = (undamped.longest_step(1e8), damped.longest_step(1e8));
         assert!(b < a);
         // h ζ + h² ω² = κ − 1 holds at the damped longest step.

@@ -5,9 +5,8 @@ use hooke_core::{CompressedSprings, History};
 use crate::linear::cholesky::{Supernodes, WeakSprings};
 use crate::linear::solver::topology::Topology;
 use crate::linear::solver::{AmgRenewal, LinearSolver};
-use crate::minimize::assembly::Assembler;
-use crate::minimize::contact::Contact;
 use crate::minimize::quasi_newton::QuasiNewton;
+use crate::minimize::terms::Terms;
 use crate::step::comparison::Comparison;
 use crate::step::conditioning::LongestStep;
 use crate::step::error_control::ErrorControl;
@@ -186,9 +185,9 @@ pub struct Implicit {
     pub(crate) comparison: Comparison,
     /// The longest substep the conditioning allows.
     pub(crate) longest: LongestStep,
-    pub(crate) assembler: Assembler,
+    /// The terms of the last system stepped.
+    pub(crate) terms: Option<Terms>,
     pub(crate) pins: Pins,
-    pub(crate) contact: Contact,
     pub(crate) quasi: QuasiNewton,
     pub(crate) work: Work,
 }
@@ -297,9 +296,8 @@ impl Implicit {
             topology: None,
             comparison: Comparison::default(),
             longest: LongestStep::default(),
-            assembler: Assembler::default(),
+            terms: None,
             pins: Pins::default(),
-            contact: Contact::default(),
             quasi: QuasiNewton::default(),
             work: Work::default(),
         }

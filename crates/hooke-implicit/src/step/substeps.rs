@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use hooke_core::{Integrator, State, StepError, StepReport, System, Vec3, check_step};
 
-use crate::minimize::contact::Contact;
+use crate::minimize::terms::Terms;
 use crate::step::attempt::Outcome;
 use crate::step::error_control::step_factor;
 use crate::step::implicit::Implicit;
@@ -19,9 +19,9 @@ impl Integrator for Implicit {
         dt: f64,
     ) -> Result<StepReport, StepError> {
         check_step(system, state, dt)?;
-        if Contact::present(system) {
-            self.contact.push_out(system, state);
-        }
+        let linearized = self.is_linearized();
+        let terms = Terms::of(&mut self.terms, system)?;
+        terms.push_out(system, state);
         let clock = Instant::now();
         let n = state.len();
         let w = &mut self.work;
@@ -37,7 +37,6 @@ impl Integrator for Implicit {
             &mut w.x_tilde,
             &mut w.v_tilde,
             &mut w.u,
-            &mut w.inertia,
             &mut w.x_prev,
             &mut w.v_prev,
             &mut w.x_earlier,
@@ -49,10 +48,10 @@ impl Integrator for Implicit {
         w.x_start.copy_from_slice(state.positions());
         w.v_start.copy_from_slice(state.velocities());
         let (start, end) = (state.time(), state.time() + dt);
-        let longest = if self.is_linearized() {
+        let longest = if linearized {
             f64::INFINITY
         } else {
-            self.longest.get(system, Self::MAX_CONDITION)
+            self.longest.get(system, terms, Self::MAX_CONDITION)
         };
         let floor = (dt / f64::from(self.settings.max_halvings).exp2()).min(longest);
         let mut h = self.substep.min(dt).min(longest);

@@ -21,7 +21,6 @@ pub(crate) struct Work {
     pub(crate) x_tilde: Vec<Vec3>,
     pub(crate) v_tilde: Vec<Vec3>,
     pub(crate) u: Vec<Vec3>,
-    pub(crate) inertia: Vec<Vec3>,
     /// BDF2's `xₙ₋₁`, `vₙ₋₁`, and `xₙ₋₂` for the error estimates.
     pub(crate) x_prev: Vec<Vec3>,
     pub(crate) v_prev: Vec<Vec3>,

@@ -3,10 +3,9 @@
 use hooke_core::SystemBuilder;
 
 use super::*;
-use crate::linear::block::SymBlock;
 use crate::linear::filter::pin_filters;
 use crate::linear::pattern::Pattern;
-use hooke_core::System;
+use hooke_core::{SymBlock, System};
 
 /// A chain of four unit masses, springs joining 0–1, 1–2 and 2–3 only,
 /// with a contact-like term `c g gᵀ`, `g = (n, n, n, n)`, joining all
@@ -66,9 +65,6 @@ fn blocks_outside_the_pattern_leave_the_factored_matrix_above_the_whole_one() {
 fn sheet_system() -> (BlockMatrix, Vec<Filter>, Vec<Vec3>) {
     use hooke_core::reference::Sheet;
 
-    use crate::minimize::assembly::Assembler;
-    use crate::minimize::linearization::Linearization;
-
     let system = Sheet::new(12).system().unwrap();
     let mut state = system.initial_state();
     for (i, x) in state.positions_mut().iter_mut().enumerate() {
@@ -77,14 +73,7 @@ fn sheet_system() -> (BlockMatrix, Vec<Filter>, Vec<Vec3>) {
     for (i, v) in state.velocities_mut().iter_mut().enumerate() {
         *v = Vec3::new((i as f64).sin(), (3.0 * i as f64).cos(), 0.0);
     }
-    let n = system.particle_count();
-    let mut work = Default::default();
-    let lin = Linearization::step_from(&state, 0.01, &mut work);
-    let mut a = BlockMatrix::zeros(Pattern::new(&system).unwrap());
-    let mut b = vec![Vec3::zeros(); n];
-    Assembler::default()
-        .assemble(&system, &lin, &mut a, &mut Default::default(), &mut b, 0.0)
-        .unwrap();
+    let (a, b) = crate::minimize::terms::linearised_step(&system, &state, 0.01);
     (a, pin_filters(&system), b)
 }
 
@@ -203,18 +192,8 @@ pub(crate) fn stiff_and_weak_grid(n: usize, growth: f64) -> System {
 /// [`stiff_and_weak_grid`] of unit spacing, its backward-Euler matrix at rest for
 /// `h = 0.05` s, and the routes of its weak springs.
 fn routed_grid(n: usize) -> (System, BlockMatrix, Routes) {
-    use crate::minimize::assembly::Assembler;
-    use crate::minimize::linearization::Linearization;
-
     let system = stiff_and_weak_grid(n, 0.0);
-    let state = system.initial_state();
-    let mut work = Default::default();
-    let lin = Linearization::step_from(&state, 0.05, &mut work);
-    let mut a = BlockMatrix::zeros(Pattern::new(&system).unwrap());
-    let mut b = vec![Vec3::zeros(); system.particle_count()];
-    Assembler::default()
-        .assemble(&system, &lin, &mut a, &mut Default::default(), &mut b, 0.0)
-        .unwrap();
+    let (a, _) = crate::minimize::terms::linearised_step(&system, &system.initial_state(), 0.05);
     let routes = Routes::new(&system, a.pattern());
     (system, a, routes)
 }

@@ -252,8 +252,7 @@ mod tests {
     use super::*;
     use crate::linear::solver::renewal::AmgRenewal;
     use crate::linear::solver::topology::topology;
-    use crate::minimize::assembly::Assembler;
-    use crate::minimize::linearization::Linearization;
+    use crate::minimize::terms::{Terms, step_from};
 
     /// The trial leaves an iterative choice with the fallback on when the
     /// factor is affordable; here block-Jacobi PCG capped at one iteration
@@ -271,16 +270,17 @@ mod tests {
         let n = system.particle_count();
         let capped = PcgSettings::new(1e-10, 1).unwrap();
         let mut cached = None;
+        let mut terms = Terms::new(&system).unwrap();
         let topology = topology(
             &mut cached,
             Some(LinearSolver::Pcg(capped)),
             (AmgRenewal::default(), Default::default()),
-            &system,
+            (&system, terms.pattern()),
         )
         .unwrap();
         topology.fallback = true;
-        let mut work = Default::default();
-        let lin = Linearization::step_from(&state, 0.01, &mut work);
+        let mut u = Vec::new();
+        let at = step_from(&state, 0.01, &mut u);
         let solve = Solve {
             system: &system,
             strict: true,
@@ -288,9 +288,7 @@ mod tests {
             forcing: 0.0,
         };
         let mut b = vec![Vec3::zeros(); n];
-        solve
-            .assemble(&mut Assembler::default(), topology, &lin, &mut b)
-            .unwrap();
+        solve.assemble(&mut terms, topology, &at, &mut b).unwrap();
         let mut x = vec![Vec3::zeros(); n];
         let mut report = StepReport::default();
         solve

@@ -1,6 +1,8 @@
 //! What the linear solver keeps per topology: the matrix, the filters and
 //! the solver in use with its factor or hierarchy.
 
+use std::sync::Arc;
+
 use hooke_core::{StepError, System};
 
 use super::LinearSolver;
@@ -46,36 +48,14 @@ impl Topology {
         self.system
     }
 
-    /// The sparsity pattern.
-    pub(crate) fn pattern(&self) -> &Pattern {
-        self.matrix.pattern()
-    }
-
     /// The matrix last assembled.
     pub(crate) fn matrix(&self) -> &BlockMatrix {
         &self.matrix
     }
 
-    /// The matrix last assembled, for the contact terms.
-    pub(crate) fn matrix_mut(&mut self) -> &mut BlockMatrix {
-        &mut self.matrix
-    }
-
     /// The matrix and its block-Jacobi preconditioner, for the assembly.
     pub(crate) fn system_mut(&mut self) -> (&mut BlockMatrix, &mut BlockJacobi) {
         (&mut self.matrix, &mut self.jacobi)
-    }
-
-    /// Renews the block-Jacobi inverses of the rows that contact terms
-    /// added to after the assembly, whose own diagonal blocks (the volume
-    /// elements' among them) end at `assembled` in the list.
-    pub(crate) fn contacts_added(&mut self, assembled: usize) {
-        for &(i, _) in &self.matrix.extra_rows[assembled..] {
-            let i = i as usize;
-            if let Some(inverse) = self.matrix.diagonal[i].inverse_if_positive_definite() {
-                self.jacobi.inverses[i] = inverse;
-            }
-        }
     }
 
     /// Whether [`LinearSolver::Auto`] is comparing two candidates on whole
@@ -120,9 +100,10 @@ impl Topology {
     }
 }
 
-/// The topology-dependent parts for `system`, rebuilt when the system
-/// changes or none were built yet (the step's history is keyed on the system
-/// too, so it restarts then). [`LinearSolver::Auto`] is resolved here by
+/// The topology-dependent parts for `system`, whose springs' `pattern`
+/// the matrix shares, rebuilt when the system changes or none were built
+/// yet (the step's history is keyed on the system too, so it restarts
+/// then). [`LinearSolver::Auto`] is resolved here by
 /// the system's size, or left to the trial. A factor for
 /// [`LinearSolver::Cholesky`] treats weak springs and picks its numeric
 /// factorization as `factoring` says;
@@ -134,13 +115,13 @@ pub(crate) fn topology<'a>(
     cached: &'a mut Option<Topology>,
     solver: Option<LinearSolver>,
     (renewal, factoring): (AmgRenewal, (WeakSprings, Supernodes)),
-    system: &System,
+    (system, pattern): (&System, &Arc<Pattern>),
 ) -> Result<&'a mut Topology, StepError> {
     if cached.as_ref().is_some_and(|t| t.system != system.id()) {
         *cached = None;
     }
     if cached.is_none() {
-        let pattern = Pattern::new(system)?;
+        let pattern = Arc::clone(pattern);
         let (matrix, solver) = match solver {
             Some(solver) => (BlockMatrix::zeros(pattern), solver),
             None => (

@@ -5,8 +5,7 @@ use super::*;
 use crate::linear::cg::BlockJacobi;
 use crate::linear::cholesky::SparseCholesky;
 use crate::linear::filter::Filter;
-use crate::linear::pattern::Pattern;
-use crate::minimize::assembly::Assembler;
+use crate::minimize::terms::{Terms, assembled};
 use hooke_core::SystemBuilder;
 
 /// Two tetrahedra sharing a face, of moduli `moduli`, on five
@@ -14,7 +13,7 @@ use hooke_core::SystemBuilder;
 /// between the pairs `springs`; then `finish` (gravity, damping) and
 /// the build. Also returns positions where the first element is
 /// inverted (its apex through the shared face).
-fn two_tets(
+pub(in crate::minimize::terms) fn two_tets(
     springs: impl IntoIterator<Item = (usize, usize)>,
     damping: f64,
     moduli: [f64; 2],
@@ -43,7 +42,7 @@ fn two_tets(
 
 /// [`two_tets`] with springs on some of their edges, gravity and air
 /// damping, and a second vertex moved too.
-fn system() -> (System, Vec<Vec3>) {
+pub(in crate::minimize::terms) fn system() -> (System, Vec<Vec3>) {
     let springs = [(0, 1), (1, 2), (2, 3), (3, 4)];
     let (system, mut x) = two_tets(springs, 0.3, [2e3, 5e2], |b| {
         b.gravity([0.0, -9.81, 0.0]).air_damping(0.1);
@@ -54,21 +53,19 @@ fn system() -> (System, Vec<Vec3>) {
 
 /// [`system`] at velocities `v` about `x̃` with `βh = 0.02`, and the
 /// predictor's velocities `ṽ`.
-struct Fixture {
-    system: System,
-    pattern: Pattern,
-    x_tilde: Vec<Vec3>,
-    v: Vec<Vec3>,
-    v_tilde: Vec<Vec3>,
-    beta_h: f64,
+pub(in crate::minimize::terms) struct Fixture {
+    pub(in crate::minimize::terms) system: System,
+    pub(in crate::minimize::terms) x_tilde: Vec<Vec3>,
+    pub(in crate::minimize::terms) v: Vec<Vec3>,
+    pub(in crate::minimize::terms) v_tilde: Vec<Vec3>,
+    pub(in crate::minimize::terms) beta_h: f64,
 }
 
 impl Fixture {
-    fn new() -> Self {
+    pub(in crate::minimize::terms) fn new() -> Self {
         let (system, x_tilde) = system();
         let n = system.particle_count();
         Self {
-            pattern: Pattern::new(&system).unwrap(),
             system,
             x_tilde,
             v: (0..n)
@@ -82,7 +79,7 @@ impl Fixture {
     }
 
     /// `x̃ + βh v`.
-    fn positions(&self, v: &[Vec3]) -> Vec<Vec3> {
+    pub(in crate::minimize::terms) fn positions(&self, v: &[Vec3]) -> Vec<Vec3> {
         let beta_h = self.beta_h;
         self.x_tilde
             .iter()
@@ -91,25 +88,49 @@ impl Fixture {
             .collect()
     }
 
-    /// `Φ(v)` with the assembler's frozen directions.
-    fn phi(&self, assembler: &Assembler, v: &[Vec3]) -> f64 {
+    /// The point `v` with positions `x`, compressed springs `compressed`.
+    pub(in crate::minimize::terms) fn at<'a>(
+        &'a self,
+        x: &'a [Vec3],
+        v: &'a [Vec3],
+        compressed: CompressedSprings,
+    ) -> At<'a> {
+        At {
+            x,
+            v,
+            v_tilde: &self.v_tilde,
+            beta_h: self.beta_h,
+            displacement: None,
+            compressed,
+        }
+    }
+
+    /// `Φ(v)` with the terms' frozen directions.
+    fn phi(&self, terms: &mut Terms, v: &[Vec3]) -> f64 {
         let x = self.positions(v);
-        assembler
-            .potential(
-                &self.system,
-                &self.pattern,
-                &x,
-                v,
-                &self.v_tilde,
-                self.beta_h,
-            )
-            .value
+        let at = self.at(&x, v, CompressedSprings::Clamped);
+        terms.value(&self.system, &at).value
+    }
+
+    /// The terms, begun at a step from `x̃`: the dampers' directions are
+    /// frozen there.
+    pub(in crate::minimize::terms) fn terms(&self) -> Terms {
+        let mut terms = Terms::new(&self.system).unwrap();
+        let step = StepStart {
+            x: &self.x_tilde,
+            v: &self.v,
+            time: 0.0,
+            h: self.beta_h,
+            beta_h: self.beta_h,
+        };
+        terms.begin(&self.system, &step);
+        terms
     }
 }
 
 /// Asserts that `b` is minus the gradient of `phi` at `v` (central
 /// differences).
-fn assert_gradient(phi: impl Fn(&[Vec3]) -> f64, v: &[Vec3], b: &[Vec3]) {
+fn assert_gradient(mut phi: impl FnMut(&[Vec3]) -> f64, v: &[Vec3], b: &[Vec3]) {
     let h = 1e-6;
     for i in 0..v.len() {
         for c in 0..3 {
@@ -126,36 +147,28 @@ fn assert_gradient(phi: impl Fn(&[Vec3]) -> f64, v: &[Vec3], b: &[Vec3]) {
     }
 }
 
-/// The quasi-Newton step's one pass ([`Assembler::evaluate`]) gives the
-/// value and rounding of [`Assembler::potential`] and minus the
-/// gradient of `Φ` in the velocities (central differences), with
-/// damped springs along frozen directions, volume elements (one
-/// inverted), gravity and air damping.
+/// The quasi-Newton step's passes ([`Terms::gradient`]) give the value
+/// and magnitude of [`Terms::value`] and minus the gradient of `Φ` in the
+/// velocities (central differences), with damped springs along frozen
+/// directions, volume elements (one inverted), gravity and air damping.
 #[test]
 fn one_pass_gives_the_potential_and_its_gradient() {
     let f = Fixture::new();
-    let (system, pattern, beta_h) = (&f.system, &f.pattern, f.beta_h);
-    let (n, v, v_tilde) = (system.particle_count(), &f.v, &f.v_tilde);
+    let (system, v) = (&f.system, &f.v);
     let x = f.positions(v);
-    let mut assembler = Assembler::default();
-    assembler.freeze_directions(system, pattern, &f.x_tilde);
-    let mut b = vec![Vec3::zeros(); n];
-    let point = crate::minimize::residual::Point {
-        x: &x,
-        v,
-        v_tilde,
-        beta_h,
-    };
-    let both = assembler.evaluate(system, pattern, point, &mut b);
-    let alone = assembler.potential(system, pattern, &x, v, v_tilde, beta_h);
+    let at = f.at(&x, v, CompressedSprings::Clamped);
+    let mut terms = f.terms();
+    let mut b = vec![Vec3::zeros(); system.particle_count()];
+    let both = terms.gradient(system, &at, &mut b);
+    let alone = terms.value(system, &at);
     assert!((both.value - alone.value).abs() <= 1e-12 * alone.value.abs());
-    assert!((both.rounding - alone.rounding).abs() <= 1e-12 * alone.rounding);
-    assert_gradient(|v| f.phi(&assembler, v), v, &b);
+    assert!((both.magnitude - alone.magnitude).abs() <= 1e-12 * alone.magnitude);
+    assert_gradient(|v| f.phi(&mut terms, v), v, &b);
 }
 
 /// The assembled right-hand side at a Newton iterate is minus the
 /// gradient of `Φ` in the velocities (central differences of
-/// [`Assembler::potential`]), and the matrix holds `β²h²` times each
+/// [`Terms::value`]), and the matrix holds `β²h²` times each
 /// element's Hessian between its vertices: the exact one with exact
 /// springs, the projected one with clamped springs, and the
 /// Gauss–Newton one for Baraff & Witkin's step (one element inverted,
@@ -163,29 +176,20 @@ fn one_pass_gives_the_potential_and_its_gradient() {
 #[test]
 fn volume_terms_are_the_potentials_derivatives() {
     let f = Fixture::new();
-    let (system, pattern, beta_h) = (&f.system, &f.pattern, f.beta_h);
-    let (n, v, v_tilde) = (system.particle_count(), &f.v, &f.v_tilde);
+    let (system, beta_h) = (&f.system, f.beta_h);
+    let (n, v) = (system.particle_count(), &f.v);
     let x = f.positions(v);
-    let inertia: Vec<Vec3> = (0..n)
-        .map(|i| -system.masses()[i] * (v[i] - v_tilde[i]))
-        .collect();
-    let mut assembler = Assembler::default();
-    let (mut a, mut jacobi) = (BlockMatrix::zeros(pattern.clone()), BlockJacobi::default());
+    // Before any step, the first evaluation freezes the damping directions
+    // at its positions, x.
+    let mut terms = Terms::new(system).unwrap();
+    let mut a = BlockMatrix::zeros(std::sync::Arc::clone(terms.pattern()));
+    let mut jacobi = BlockJacobi::default();
     let mut b = vec![Vec3::zeros(); n];
-    // The first linearisation freezes the damping directions at x.
-    let lin = Linearization {
-        positions: &x,
-        velocities: v,
-        displacement: None,
-        inertia: &inertia,
-        beta_h,
-        compressed: CompressedSprings::Exact,
-        freeze_directions: true,
-    };
-    assembler
-        .assemble(system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+    let at = f.at(&x, v, CompressedSprings::Exact);
+    terms
+        .assemble(system, &at, &mut a, &mut jacobi, &mut b, 0.0)
         .unwrap();
-    assert_gradient(|v| f.phi(&assembler, v), v, &b);
+    assert_gradient(|v| f.phi(&mut terms, v), v, &b);
     let w: Vec<Vec3> = (0..n)
         .map(|i| Vec3::new(1.0, -0.5 * i as f64, 0.25 + i as f64))
         .collect();
@@ -199,17 +203,12 @@ fn volume_terms_are_the_potentials_derivatives() {
             TetHessian::GaussNewton,
         ),
     ] {
-        let lin = Linearization {
-            positions: &x,
-            velocities: v,
+        let at = At {
             displacement,
-            inertia: &inertia,
-            beta_h,
-            compressed,
-            freeze_directions: false,
+            ..f.at(&x, v, compressed)
         };
-        assembler
-            .assemble(system, &lin, &mut a, &mut jacobi, &mut b, 0.0)
+        terms
+            .assemble(system, &at, &mut a, &mut jacobi, &mut b, 0.0)
             .unwrap();
         let mut with = vec![Vec3::zeros(); n];
         a.apply(&w, &mut with);
@@ -248,20 +247,15 @@ fn the_factor_solves_a_system_with_elements_on_springs() {
     let (system, x) = two_tets(every_pair_but_3_4, 0.0, [2e4, 5e3], |_| {});
     let n = system.particle_count();
     let v = vec![Vec3::zeros(); n];
-    let lin = Linearization {
-        positions: &x,
-        velocities: &v,
-        displacement: None,
-        inertia: &v,
+    let at = At {
+        x: &x,
+        v: &v,
+        v_tilde: &v,
         beta_h: 0.1,
+        displacement: None,
         compressed: CompressedSprings::Clamped,
-        freeze_directions: true,
     };
-    let mut a = BlockMatrix::zeros(Pattern::new(&system).unwrap());
-    let (mut jacobi, mut rhs) = (BlockJacobi::default(), vec![Vec3::zeros(); n]);
-    Assembler::default()
-        .assemble(&system, &lin, &mut a, &mut jacobi, &mut rhs, 0.0)
-        .unwrap();
+    let (a, rhs) = assembled(&mut Terms::new(&system).unwrap(), &system, &at);
     let filters = vec![Filter::Free; n];
     let mut factor = SparseCholesky::new(&a).unwrap();
     let mut solution = vec![Vec3::zeros(); n];
