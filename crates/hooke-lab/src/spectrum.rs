@@ -2,21 +2,23 @@
 //! explicit method's step limit `h < θ_limit / ω_max`.
 //!
 //! Linearised about the initial state and without damping, the free
-//! particles obey `M u'' = −K u`, with `K` the stiffness matrix
-//! `Σ_s [[H_s, −H_s], [−H_s, H_s]]` (pinned particles' rows and columns
-//! removed, compressed springs' transverse stiffness clamped at zero as in
-//! the implicit solver), plus each volume element's Hessian at the initial
-//! state, `κ V₀ ∇J ∇Jᵀ` at rest. Its natural frequencies are
-//! `ω² = eig(M⁻¹K)`.
+//! particles obey `M u'' = −K u`, with `K` the sum of the stiffness of the
+//! system's terms ([`Term::stiffness`](hooke_core::Term::stiffness): each
+//! spring's `[[H_s, −H_s], [−H_s, H_s]]`, compressed springs' transverse
+//! stiffness clamped at zero as in the implicit solver, and each volume
+//! element's projected Hessian, `κ V₀ ∇J ∇Jᵀ` at rest), pinned particles'
+//! rows and columns removed. Its natural frequencies are `ω² = eig(M⁻¹K)`.
 //! [`omega_max`] finds the largest by power iteration on the symmetric
-//! matrix `M^(−1/2) K M^(−1/2)` (same eigenvalues): the Rayleigh quotient of
-//! the iterate rises monotonically to `ω_max²` from below. It stops when the
-//! quotient changes by less than a relative `10⁻¹⁰` between iterations or
-//! after [`MAX_ITERATIONS`], and also returns the Gershgorin bound
-//! (the largest absolute row sum), an upper bound on `ω_max²`, so a caller
-//! can see how tight the estimate is.
+//! matrix `M^(−1/2) K M^(−1/2)` (same eigenvalues): the Rayleigh quotient
+//! of the iterate rises monotonically to `ω_max²` from below. It stops when
+//! the quotient changes by less than a relative `10⁻¹⁰` between iterations
+//! or after [`MAX_ITERATIONS`], and also returns the Gershgorin bound (the
+//! largest absolute row sum), an upper bound on `ω_max²`, so a caller can
+//! see how tight the estimate is.
 
-use hooke_core::{CompressedSprings, Mat12, System, TetHessian, Vec3};
+use hooke_core::term::Blocks;
+use hooke_core::{Mat3, System, Vec3};
+use hooke_implicit::Terms;
 
 /// The power iteration's cap.
 pub const MAX_ITERATIONS: usize = 2000;
@@ -25,7 +27,8 @@ pub const MAX_ITERATIONS: usize = 2000;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Spectrum {
     /// The estimate of the largest natural frequency, rad/s (zero for a
-    /// system without free particles or springs).
+    /// system without free particles or stiffness; not a number for one
+    /// too large for the implicit step's 32-bit indices).
     pub omega_max: f64,
     /// The Gershgorin upper bound on `ω_max`, rad/s.
     pub omega_bound: f64,
@@ -33,29 +36,25 @@ pub struct Spectrum {
     pub iterations: usize,
 }
 
-/// `y = M^(−1/2) K M^(−1/2) x` on the free particles (`x` and `y` zero on
-/// pinned ones).
-fn apply(system: &System, blocks: &Blocks, scale: &[f64], x: &[Vec3], y: &mut [Vec3]) {
-    y.iter_mut().for_each(|v| *v = Vec3::zeros());
-    for (s, h) in system.springs().iter().zip(&blocks.springs) {
-        let d = h * (x[s.i] * scale[s.i] - x[s.j] * scale[s.j]);
-        y[s.i] += d * scale[s.i];
-        y[s.j] -= d * scale[s.j];
-    }
-    for (t, h) in system.tets().iter().zip(&blocks.tets) {
-        for (a, &i) in t.vertices.iter().enumerate() {
-            for (b, &j) in t.vertices.iter().enumerate() {
-                y[i] += scale[i] * (h.fixed_view::<3, 3>(3 * a, 3 * b) * x[j]) * scale[j];
+/// The largest absolute row sum of `M^(−1/2) K M^(−1/2)`, `scale` holding
+/// `M^(−1/2)`.
+fn gershgorin(k: &Blocks, scale: &[f64]) -> f64 {
+    let row_sum = |b: &Mat3, r: usize| (0..3).map(|c| b[(r, c)].abs()).sum::<f64>();
+    let mut sums: Vec<[f64; 3]> = k
+        .rows
+        .iter()
+        .zip(scale)
+        .map(|(row, s)| std::array::from_fn(|r| row_sum(&row.to_mat3(), r) * s * s))
+        .collect();
+    for &(i, j, block) in &k.pairs {
+        let weight = scale[i] * scale[j];
+        for (at, block) in [(i, block), (j, block.transpose())] {
+            for (r, sum) in sums[at].iter_mut().enumerate() {
+                *sum += row_sum(&block, r) * weight;
             }
         }
     }
-}
-
-/// The springs' stiffness blocks and the volume elements' Hessians at the
-/// initial state.
-struct Blocks {
-    springs: Vec<hooke_core::Mat3>,
-    tets: Vec<Mat12>,
+    sums.iter().flatten().copied().fold(0.0, f64::max)
 }
 
 /// The largest natural frequency of `system` at its initial state (see
@@ -71,42 +70,21 @@ struct Blocks {
 /// ```
 #[must_use]
 pub fn omega_max(system: &System) -> Spectrum {
-    let n = system.particle_count();
-    let x0 = system.initial_positions();
-    let blocks = Blocks {
-        springs: system
-            .springs()
-            .iter()
-            .map(|s| s.stiffness_block(x0[s.i], x0[s.j], CompressedSprings::Clamped))
-            .collect(),
-        tets: system
-            .tets()
-            .iter()
-            .map(|t| t.derivatives(x0, TetHessian::Projected).hessian)
-            .collect(),
+    let Ok(terms) = Terms::new(system) else {
+        return Spectrum {
+            omega_max: f64::NAN,
+            omega_bound: f64::NAN,
+            iterations: 0,
+        };
     };
+    let n = system.particle_count();
+    let mut k = Blocks::new(n);
+    for term in terms.iter() {
+        term.stiffness(system, system.initial_positions(), &mut k);
+    }
     // M^(−1/2), zero on pinned particles so that they drop out.
     let scale: Vec<f64> = system.inverse_masses().iter().map(|&w| w.sqrt()).collect();
-
-    let mut row_sums = vec![0.0; 3 * n];
-    for (s, h) in system.springs().iter().zip(&blocks.springs) {
-        for r in 0..3 {
-            let row: f64 = (0..3).map(|c| h[(r, c)].abs()).sum();
-            let (a, b) = (scale[s.i], scale[s.j]);
-            row_sums[3 * s.i + r] += row * a * (a + b);
-            row_sums[3 * s.j + r] += row * b * (a + b);
-        }
-    }
-    for (t, h) in system.tets().iter().zip(&blocks.tets) {
-        for (a, &i) in t.vertices.iter().enumerate() {
-            for r in 0..3 {
-                row_sums[3 * i + r] += (0..12)
-                    .map(|c| h[(3 * a + r, c)].abs() * scale[i] * scale[t.vertices[c / 3]])
-                    .sum::<f64>();
-            }
-        }
-    }
-    let bound = row_sums.iter().copied().fold(0.0, f64::max);
+    let bound = gershgorin(&k, &scale);
 
     // A start with a component along every mode that has one: a fixed,
     // irregular vector on the free particles.
@@ -120,7 +98,7 @@ pub fn omega_max(system: &System) -> Spectrum {
             ) * f64::from(u8::from(scale[i] > 0.0))
         })
         .collect();
-    let mut y = vec![Vec3::zeros(); n];
+    let (mut scaled, mut y) = (vec![Vec3::zeros(); n], vec![Vec3::zeros(); n]);
     let mut rayleigh = 0.0;
     let mut iterations = 0;
     for iteration in 1..=MAX_ITERATIONS {
@@ -129,7 +107,14 @@ pub fn omega_max(system: &System) -> Spectrum {
             break;
         }
         x.iter_mut().for_each(|v| *v /= norm);
-        apply(system, &blocks, &scale, &x, &mut y);
+        // y = M^(−1/2) K M^(−1/2) x.
+        for ((s, xi), w) in scaled.iter_mut().zip(&x).zip(&scale) {
+            *s = *w * xi;
+        }
+        k.apply(&scaled, &mut y);
+        for (yi, w) in y.iter_mut().zip(&scale) {
+            *yi *= *w;
+        }
         let next: f64 = x.iter().zip(&y).map(|(a, b)| a.dot(b)).sum();
         iterations = iteration;
         let converged = (next - rayleigh).abs() <= 1e-10 * next.abs();
