@@ -34,6 +34,7 @@ impl SymBlock {
     }
 
     /// The symmetric part `½(m + mᵀ)` of `m`.
+    #[inline]
     #[must_use]
     pub fn symmetric_part(m: &Mat3) -> Self {
         let s = 0.5 * (m + m.transpose());
@@ -68,6 +69,7 @@ impl SymBlock {
     }
 
     /// Whether every entry is finite.
+    #[inline]
     #[must_use]
     pub fn is_finite(&self) -> bool {
         self.0.iter().all(|c| c.is_finite())
@@ -75,6 +77,7 @@ impl SymBlock {
 
     /// The inverse if the block is positive definite (all leading principal
     /// minors positive, by Sylvester's criterion), else `None`.
+    #[inline]
     #[must_use]
     pub fn inverse_if_positive_definite(&self) -> Option<Self> {
         let [a, b, c, d, e, f] = self.0;
@@ -95,6 +98,7 @@ impl SymBlock {
     }
 
     /// The full matrix.
+    #[inline]
     #[must_use]
     pub fn to_mat3(&self) -> Mat3 {
         let [a, b, c, d, e, f] = self.0;

@@ -183,7 +183,7 @@ impl BlockMatrix {
 
     /// [`Self::add_extra_pair`] with the slot between `i` and `j` known
     /// (`None`: no spring joins them).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn add_extra_pair_at(
         &mut self,
         i: usize,

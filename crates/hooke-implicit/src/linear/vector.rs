@@ -123,6 +123,31 @@ pub(crate) fn sum2(n: usize, f: impl Fn(usize) -> (f64, f64) + Sync + Send) -> (
     (0..n).map(f).fold((0.0, 0.0), add)
 }
 
+/// `(Σᵢ f(i, &mut out[i]).0, Σᵢ f(i, &mut out[i]).1)`: a pass that updates
+/// every row and sums over them, in parallel when `out` is long (summed in
+/// the order of [`sum2`]).
+#[inline]
+pub(crate) fn sum2_rows<T: Send>(
+    out: &mut [T],
+    f: impl Fn(usize, &mut T) -> (f64, f64) + Sync + Send,
+) -> (f64, f64) {
+    let add = |a: (f64, f64), b: (f64, f64)| (a.0 + b.0, a.1 + b.1);
+    #[cfg(feature = "parallel")]
+    if out.len() >= PARALLEL_MIN_PARTICLES {
+        use rayon::prelude::*;
+        return out
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(MIN_CHUNK)
+            .map(|(i, o)| f(i, o))
+            .reduce(|| (0.0, 0.0), add);
+    }
+    out.iter_mut()
+        .enumerate()
+        .map(|(i, o)| f(i, o))
+        .fold((0.0, 0.0), add)
+}
+
 /// `Σᵢ aᵢ·bᵢ`.
 pub(crate) fn dot(a: &[Vec3], b: &[Vec3]) -> f64 {
     sum(a.len(), |i| a[i].dot(&b[i]))

@@ -2,7 +2,7 @@
 
 use hooke_core::{At, Hessian, Potential, System, Term, Vec3, When};
 
-use crate::linear::vector::{for_each_row, sum2};
+use crate::linear::vector::{for_each_row, sum2, sum2_rows};
 
 /// Air damping `γ`: the force `−γ vᵢ` on every particle, the dissipation
 /// potential `R = ½γ Σ|vᵢ|²` (times `βh` in `Φ`), Hessian `βh γ I`. It
@@ -27,6 +27,17 @@ impl Term for AirDamping {
     fn value(&mut self, _system: &System, at: &At<'_>) -> Potential {
         let (v, bh, gamma) = (at.v, at.beta_h, self.gamma);
         let (value, magnitude) = sum2(v.len(), |i| {
+            let e = 0.5 * bh * gamma * v[i].norm_squared();
+            (e, e)
+        });
+        Potential { value, magnitude }
+    }
+
+    /// The value and `b −= βh γ v` in one pass over the particles.
+    fn gradient(&mut self, _system: &System, at: &At<'_>, b: &mut [Vec3]) -> Potential {
+        let (v, bh, gamma) = (at.v, at.beta_h, self.gamma);
+        let (value, magnitude) = sum2_rows(b, |i, bi| {
+            *bi -= bh * gamma * v[i];
             let e = 0.5 * bh * gamma * v[i].norm_squared();
             (e, e)
         });

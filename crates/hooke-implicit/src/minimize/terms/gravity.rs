@@ -2,7 +2,7 @@
 
 use hooke_core::{At, Hessian, Potential, System, Term, Vec3, When};
 
-use crate::linear::vector::{for_each_row, sum2};
+use crate::linear::vector::{for_each_row, sum2, sum2_rows};
 
 /// Uniform gravity `g`: the potential `V = −Σ mᵢ g·xᵢ`, force `mᵢ g`, linear
 /// in the positions, so without Hessian or stiffness.
@@ -26,6 +26,17 @@ impl Term for Gravity {
     fn value(&mut self, system: &System, at: &At<'_>) -> Potential {
         let (masses, x, g) = (system.masses(), at.x, self.g);
         let (value, magnitude) = sum2(x.len(), |i| {
+            let e = -masses[i] * g.dot(&x[i]);
+            (e, e.abs())
+        });
+        Potential { value, magnitude }
+    }
+
+    /// The value and `b += βh mᵢ g` in one pass over the particles.
+    fn gradient(&mut self, system: &System, at: &At<'_>, b: &mut [Vec3]) -> Potential {
+        let (masses, x, bh, g) = (system.masses(), at.x, at.beta_h, self.g);
+        let (value, magnitude) = sum2_rows(b, |i, bi| {
+            *bi += bh * masses[i] * g;
             let e = -masses[i] * g.dot(&x[i]);
             (e, e.abs())
         });

@@ -2,7 +2,7 @@
 
 use hooke_core::{At, Hessian, Potential, System, Term, Vec3, When};
 
-use crate::linear::vector::{for_each_row, sum2};
+use crate::linear::vector::{for_each_row, sum2, sum2_rows};
 
 /// The inertia `½ Σ mᵢ |vᵢ − ṽᵢ|²`: gradient `M(v − ṽ)`, Hessian the mass
 /// matrix `M`. Its part of the energy is the free particles' kinetic
@@ -18,6 +18,17 @@ impl Term for Inertia {
     fn value(&mut self, system: &System, at: &At<'_>) -> Potential {
         let (masses, v, v_tilde) = (system.masses(), at.v, at.v_tilde);
         let (value, magnitude) = sum2(v.len(), |i| {
+            let e = 0.5 * masses[i] * (v[i] - v_tilde[i]).norm_squared();
+            (e, e)
+        });
+        Potential { value, magnitude }
+    }
+
+    /// The value and `b += M(ṽ − v)` in one pass over the particles.
+    fn gradient(&mut self, system: &System, at: &At<'_>, b: &mut [Vec3]) -> Potential {
+        let (masses, v, v_tilde) = (system.masses(), at.v, at.v_tilde);
+        let (value, magnitude) = sum2_rows(b, |i, bi| {
+            *bi += masses[i] * (v_tilde[i] - v[i]);
             let e = 0.5 * masses[i] * (v[i] - v_tilde[i]).norm_squared();
             (e, e)
         });

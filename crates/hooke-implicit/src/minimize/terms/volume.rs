@@ -30,8 +30,10 @@ struct ElementTerms {
 }
 
 impl ElementTerms {
-    /// Element `t`'s share at `at` with its Hessian of kind `kind`.
-    fn of(t: &Tet, at: &At<'_>, kind: TetHessian) -> Self {
+    /// Sets this to element `t`'s share at `at` with its Hessian of kind
+    /// `kind`.
+    #[inline]
+    fn evaluate(&mut self, t: &Tet, at: &At<'_>, kind: TetHessian) {
         let bh = at.beta_h;
         let d = t.blocks(at.x, kind, bh * bh);
         let block = |p: usize, q: usize| match p.cmp(&q) {
@@ -39,21 +41,17 @@ impl ElementTerms {
             std::cmp::Ordering::Less => d.pairs[pair_index(p, q)],
             std::cmp::Ordering::Greater => d.pairs[pair_index(q, p)].transpose(),
         };
-        let mut terms = Self {
-            pairs: d.pairs,
-            ..Self::default()
-        };
         for p in 0..4 {
-            terms.rhs[p] = -bh * d.gradient[p];
+            self.rhs[p] = -bh * d.gradient[p];
             if let Some(u) = at.displacement {
                 // `−βh H u` with the blocks' `β²h² H`.
                 for (q, &j) in t.vertices.iter().enumerate() {
-                    terms.rhs[p] -= block(p, q) * u[j] / bh;
+                    self.rhs[p] -= block(p, q) * u[j] / bh;
                 }
             }
-            terms.diagonal[p] = SymBlock::symmetric_part(&d.diagonal[p]);
+            self.diagonal[p] = SymBlock::symmetric_part(&d.diagonal[p]);
         }
-        terms
+        self.pairs = d.pairs;
     }
 }
 
@@ -144,7 +142,7 @@ impl Volume {
         };
         let evaluate = |t: &Tet, terms: &mut ElementTerms| {
             if t.modulus > 0.0 {
-                *terms = ElementTerms::of(t, at, kind);
+                terms.evaluate(t, at, kind);
             }
         };
         let slots = &self.slots;
@@ -237,8 +235,9 @@ impl Term for Volume {
             });
             return;
         }
+        let mut terms = ElementTerms::default();
         for t in elements(system) {
-            let terms = ElementTerms::of(t, at, kind);
+            terms.evaluate(t, at, kind);
             for (p, &i) in t.vertices.iter().enumerate() {
                 b[i] += terms.rhs[p];
                 hessian.add_row(i, terms.diagonal[p]);

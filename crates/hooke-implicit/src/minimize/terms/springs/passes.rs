@@ -180,7 +180,7 @@ impl Springs {
 /// share `f − H u − c (e·(vᵢ − vⱼ)) e` at `at`, `e` its damper's direction
 /// `frozen` — or, with `freeze`, its own direction `d` at `at`, frozen
 /// there.
-#[inline]
+#[inline(always)]
 pub(super) fn spring_terms(
     s: &Spring,
     at: &At<'_>,
