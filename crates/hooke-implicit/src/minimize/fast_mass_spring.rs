@@ -7,8 +7,8 @@ use hooke_core::{
 };
 
 use crate::WeakSprings;
+use crate::linear::laplacian::{Inverse, Laplacian};
 use crate::linear::solver::LinearSolver;
-use crate::minimize::laplacian::{Inverse, Laplacian};
 
 /// Backward Euler for springs as Liu et al. (2013) solve it.
 ///

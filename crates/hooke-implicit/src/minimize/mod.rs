@@ -6,7 +6,6 @@
 pub(crate) mod assembly;
 pub(crate) mod contact;
 pub(crate) mod fast_mass_spring;
-pub(crate) mod laplacian;
 pub(crate) mod line_search;
 pub(crate) mod linearization;
 pub(crate) mod newton;

@@ -57,8 +57,8 @@ use hooke_core::{StepError, System, Vec3};
 
 use crate::WeakSprings;
 use crate::linear::block::SymBlock;
+use crate::linear::laplacian::{Inverse, Laplacian};
 use crate::linear::vector::{dot, for_each_row};
-use crate::minimize::laplacian::{Inverse, Laplacian};
 
 /// The quasi-Newton state of an integrator: `H₀`'s factor and the curvature
 /// pairs of the current (sub)step.

@@ -21,7 +21,7 @@ use routes::Carried;
 pub use routes::WeakSprings;
 pub(crate) use routes::{Routes, SpringRoute};
 
-use crate::linear::amg::fine::Neighbours;
+use crate::linear::neighbours::Neighbours;
 
 use crate::linear::cg::{self, PcgError, PcgInfo, PcgSettings, PcgWorkspace, Preconditioner};
 use crate::linear::filter::Filter;

@@ -6,7 +6,7 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::sparse::linalg::amd;
 
-use crate::linear::amg::fine::Neighbours;
+use crate::linear::neighbours::Neighbours;
 use crate::linear::pattern::Pattern;
 
 use super::Routes;

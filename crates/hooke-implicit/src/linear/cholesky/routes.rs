@@ -38,8 +38,8 @@
 
 use hooke_core::{Mat3, System};
 
-use crate::linear::amg::fine::Neighbours;
 use crate::linear::matrix::BlockMatrix;
+use crate::linear::neighbours::Neighbours;
 use crate::linear::pattern::Pattern;
 
 /// Where weak springs go in the matrix a step factorizes (see the `routes`

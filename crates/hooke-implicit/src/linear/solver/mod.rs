@@ -10,7 +10,6 @@ pub(crate) mod solve;
 pub(crate) mod topology;
 
 use crate::linear::cg::PcgSettings;
-use crate::minimize::laplacian::Inverse;
 
 pub use self::auto_settings::AutoSettings;
 pub use self::renewal::AmgRenewal;
@@ -74,17 +73,6 @@ pub enum LinearSolver {
 }
 
 impl LinearSolver {
-    /// How the quasi-Newton step applies `H₀⁻¹` under this setting:
-    /// multigrid for [`LinearSolver::Amg`], the factor or multigrid by the
-    /// factor's size for [`LinearSolver::Auto`], the factor otherwise.
-    pub(crate) fn initial_hessian_inverse(self) -> Inverse {
-        match self {
-            Self::Amg(_) => Inverse::Multigrid,
-            Self::Auto => Inverse::Auto,
-            Self::Pcg(_) | Self::Cholesky | Self::LaggedCholesky(_) => Inverse::Factor,
-        }
-    }
-
     /// Iterations of a [`LinearSolver::LaggedCholesky`] solve beyond which
     /// the next solve factorizes again.
     pub const LAGGED_REFACTOR_ITERATIONS: usize = 10;
