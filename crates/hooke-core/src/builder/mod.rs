@@ -100,9 +100,10 @@ impl SystemBuilder {
     }
 
     /// Adds a volume element on four particles with modulus `κ` in Pa (see
-    /// [`Tet`]): its rest volume is theirs at their initial positions, in
-    /// either orientation; a modulus of 0 adds an element that only
-    /// measures its volume ([`System::inversion`]). Returns its index.
+    /// [`Tet`](crate::Tet)): its rest volume is theirs at their initial
+    /// positions, in either orientation; a modulus of 0 adds an element
+    /// that only measures its volume ([`System::inversion`]). Returns its
+    /// index.
     ///
     /// ```
     /// let mut b = hooke_core::SystemBuilder::new();

@@ -14,7 +14,8 @@ use super::Routes;
 use crate::linear::neighbours::Neighbours;
 use crate::linear::pattern::Pattern;
 
-/// How [`SparseCholesky`] orders the unknowns to reduce the factor's fill.
+/// How [`SparseCholesky`](super::SparseCholesky) orders the unknowns to
+/// reduce the factor's fill.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum FillOrdering {
     /// Approximate minimum degree on the particle graph, each particle's
@@ -29,11 +30,11 @@ pub enum FillOrdering {
     Scalar,
 }
 
-/// Which of faer's two numeric factorizations [`SparseCholesky`] runs.
-/// faer's symbolic analysis takes the supernodal one (dense blocks of
-/// columns, matrix–matrix kernels) over the simplicial one (column by
-/// column) where the factor averages more flops per entry than a
-/// threshold: `Σ (c + c(c + 1)/2) / Σ c` over the factor's column counts
+/// Which of faer's two numeric factorizations
+/// [`SparseCholesky`](super::SparseCholesky) runs. faer's symbolic analysis
+/// takes the supernodal one (dense blocks of columns, matrix–matrix
+/// kernels) over the simplicial one (column by column) where the factor
+/// averages more flops per entry than a threshold: `Σ (c + c(c + 1)/2) / Σ c` over the factor's column counts
 /// `c`, about half the mean column count.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Supernodes {
