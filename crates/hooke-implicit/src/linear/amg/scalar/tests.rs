@@ -2,40 +2,28 @@
 //! symmetric positive-definite operator, and PCG with it barely slows as
 //! the mesh grows.
 
+use hooke_core::reference::Sheet;
+
 use super::*;
 
-/// `M + h² Σₛ kₛ (eᵢ − eⱼ)(eᵢ − eⱼ)ᵀ` of the bench cloth, `side × side`
-/// particles of 1 kg in all, stretch / shear / bend springs of
-/// 5000 / 500 / 50 N/m, `h = 1/60 s`.
+/// `M + h² Σₛ kₛ (eᵢ − eⱼ)(eᵢ − eⱼ)ᵀ` of the solver benchmarks' cloth
+/// ([`Sheet::cloth`]) of `side × side` particles, `h = 1/60 s`, its pinned
+/// particles kept.
 fn cloth(side: usize) -> Csr {
-    let n = side * side;
+    let system = Sheet::cloth(side, 0.0).system().unwrap();
     let h2 = (1.0f64 / 60.0).powi(2);
-    let mut rows: Vec<Vec<(u32, f64)>> = (0..n).map(|i| vec![(i as u32, 1.0 / n as f64)]).collect();
-    let mut spring = |i: usize, j: usize, k: f64| {
-        let w = h2 * k;
-        for (r, c, v) in [(i, i, w), (j, j, w), (i, j, -w), (j, i, -w)] {
+    let mut rows: Vec<Vec<(u32, f64)>> = system
+        .masses()
+        .iter()
+        .enumerate()
+        .map(|(i, &m)| vec![(i as u32, m)])
+        .collect();
+    for s in system.springs() {
+        let w = h2 * s.stiffness;
+        for (r, c, v) in [(s.i, s.i, w), (s.j, s.j, w), (s.i, s.j, -w), (s.j, s.i, -w)] {
             match rows[r].iter_mut().find(|e| e.0 as usize == c) {
                 Some(e) => e.1 += v,
                 None => rows[r].push((c as u32, v)),
-            }
-        }
-    };
-    for y in 0..side {
-        for x in 0..side {
-            let i = y * side + x;
-            for (dx, dy, k) in [
-                (1, 0, 5000.0),
-                (0, 1, 5000.0),
-                (1, 1, 500.0),
-                (2, 0, 50.0),
-                (0, 2, 50.0),
-            ] {
-                if x + dx < side && y + dy < side {
-                    spring(i, (y + dy) * side + x + dx, k);
-                }
-            }
-            if x >= 1 && y + 1 < side {
-                spring(i, (y + 1) * side + x - 1, 500.0);
             }
         }
     }
