@@ -104,6 +104,13 @@ impl Supernodes {
     }
 }
 
+impl hooke_core::Named for Supernodes {
+    /// `"blocks"` and `"faer"`, as scene files (`supernodes`) and reports
+    /// spell them.
+    const TABLE: &'static [(Self, &'static str)] =
+        &[(Self::Blocks, "blocks"), (Self::Faer, "faer")];
+}
+
 /// A direct solver for the filtered system
 ///
 /// ```text
