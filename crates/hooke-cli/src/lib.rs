@@ -100,6 +100,7 @@ mod pictures;
 mod run_options;
 mod runner;
 mod scene_source;
+mod settings_keys;
 mod step_record;
 mod summary;
 mod surface_record;

@@ -138,7 +138,11 @@ pub fn run(
     };
     let taken = run.steps;
     let total = run.report;
-    let implicit = matches!(scene.integrator, IntegratorSpec::Implicit { .. });
+    let implicit_settings = match scene.integrator {
+        IntegratorSpec::Implicit(settings) => Some(settings),
+        _ => None,
+    };
+    let implicit = implicit_settings.is_some();
     let per_step = |count: usize| implicit.then(|| mean(count, taken));
     let energies = energy.samples();
     let (mut energy_gain, energy_gain_time) = budget.max_gain();
@@ -157,6 +161,7 @@ pub fn run(
     let summary = Summary {
         scene: scene.name.clone(),
         integrator: integrator.name().to_owned(),
+        implicit_settings,
         dt: timing.dt,
         steps: taken,
         steps_planned: steps,

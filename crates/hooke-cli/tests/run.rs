@@ -311,15 +311,10 @@ fn converged_backward_euler_gains_no_energy_and_warns_of_nothing() {
 #[test]
 fn steps_accepted_unconverged_are_warned_of_and_strict_mode_stops_the_run() {
     let mut scene = cloth_on_sphere(0.2);
-    let IntegratorSpec::Implicit {
-        newton_iterations,
-        max_halvings,
-        ..
-    } = &mut scene.integrator
-    else {
+    let IntegratorSpec::Implicit(settings) = &mut scene.integrator else {
         unreachable!("the scene is implicit")
     };
-    (*newton_iterations, *max_halvings) = (1, 0);
+    (settings.newton_iterations, settings.max_halvings) = (1, 0);
     let dir = tempfile::tempdir().unwrap();
     let summary = run(&scene, &RunOptions::new(dir.path()).gif(false), &mut ()).unwrap();
     assert!(summary.error.is_none());
@@ -339,10 +334,10 @@ fn steps_accepted_unconverged_are_warned_of_and_strict_mode_stops_the_run() {
         Some(summary.warnings.len())
     );
 
-    let IntegratorSpec::Implicit { strict, .. } = &mut scene.integrator else {
+    let IntegratorSpec::Implicit(settings) = &mut scene.integrator else {
         unreachable!("the scene is implicit")
     };
-    *strict = true;
+    settings.strict = true;
     let summary = run(&scene, &RunOptions::new(dir.path()).gif(false), &mut ()).unwrap();
     assert_eq!(summary.steps, 0);
     let error = summary.error.expect("strict mode fails the first step");

@@ -62,6 +62,7 @@ mod error;
 mod forces;
 mod integrator;
 mod logs;
+mod named;
 mod observer;
 mod obstacle;
 pub mod reference;
@@ -79,6 +80,7 @@ pub use error::{BuildError, Parameter, ParameterError, Quantity, SpringParameter
 pub use forces::{ForceEvaluator, PARALLEL_MIN_SPRINGS, Parallelism};
 pub use integrator::{Integrator, StepReport, check_step};
 pub use logs::{EnergyLog, EnergySample, StrainLog};
+pub use named::{Named, quoted_list};
 pub use observer::{ObserveFn, Observer, StepInfo};
 pub use obstacle::{Obstacle, Path, Shape};
 pub use simulation::{End, Run, Simulation};

@@ -3,7 +3,8 @@
 //! local/global iterations on a constant, prefactored matrix.
 
 use hooke_core::{
-    Integrator, Parameter, ParameterError, State, StepBuffers, StepError, StepReport, System, Vec3,
+    Integrator, Named, Parameter, ParameterError, State, StepBuffers, StepError, StepReport,
+    System, Vec3,
 };
 
 use crate::WeakSprings;

@@ -53,7 +53,7 @@
 //! Hessian (an upper bound of the block's largest eigenvalue, exact for a
 //! particle against one obstacle) — and is factorized afresh.
 
-use hooke_core::{StepError, System, Vec3};
+use hooke_core::{Named, StepError, System, Vec3};
 
 use crate::WeakSprings;
 use crate::linear::block::SymBlock;

@@ -5,7 +5,6 @@
 
 use hooke_core::{CompressedSprings, State, StepError, StepReport, System, Vec3};
 
-use crate::linear::cholesky::WeakSprings;
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::topology;
 use crate::linear::vector::for_each_row;
@@ -130,7 +129,7 @@ impl Implicit {
                 let contact = Contact::present(system);
                 let inverse = (
                     self.settings.solver.initial_hessian_inverse(),
-                    self.settings.weak_springs.unwrap_or(WeakSprings::Routed),
+                    self.settings.weak_springs_used(),
                 );
                 self.quasi
                     .begin(system, (beta_h, contact), (history, carried, inverse), time)?;
@@ -143,10 +142,7 @@ impl Implicit {
             solver,
             (
                 self.settings.amg_renewal,
-                (
-                    self.settings.weak_springs.unwrap_or(WeakSprings::Kept),
-                    self.settings.supernodes,
-                ),
+                (self.settings.weak_springs_used(), self.settings.supernodes),
             ),
             system,
         )?;

@@ -69,6 +69,13 @@ impl Supernodes {
     }
 }
 
+impl hooke_core::Named for Supernodes {
+    /// `"blocks"` and `"faer"`, as scene files (`supernodes`) and reports
+    /// spell them.
+    const TABLE: &'static [(Self, &'static str)] =
+        &[(Self::Blocks, "blocks"), (Self::Faer, "faer")];
+}
+
 /// The lower triangle of the scalar `3n × 3n` matrix in compressed
 /// columns, the particles in the order of the factorization, and where each
 /// slot's block goes in it.

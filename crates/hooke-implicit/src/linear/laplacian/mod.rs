@@ -4,7 +4,7 @@
 //! only, factorized by faer's sparse Cholesky or, where that factor would
 //! be large, applied approximately by one multigrid V-cycle.
 
-use hooke_core::{Spring, StepError, System, Vec3};
+use hooke_core::{Named, Spring, StepError, System, Vec3};
 
 mod layout;
 
