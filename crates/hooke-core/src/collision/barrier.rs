@@ -26,7 +26,8 @@
 //! any mollifier has been applied; on the 9-dimensional complement of the
 //! rigid translations, which every pair Hessian annihilates).
 
-use super::distance::{Derivatives, Matrix12};
+use super::distance::Derivatives;
+use crate::Mat12;
 use nalgebra::{Const, DefaultAllocator, DimDiff, DimSub, SMatrix, U1, allocator::Allocator};
 
 /// IPC's barrier `b(d) = −(d − d̂)² ln(d/d̂)` for `0 < d < d̂`, `0` for
@@ -113,7 +114,7 @@ fn translation_complement() -> SMatrix<f64, 12, 9> {
 /// a 9×9 eigenproblem instead of 12×12 (about 1.4 times faster in all). Other
 /// matrices
 /// take the full projection.
-fn project_pair(h: &Matrix12) -> Matrix12 {
+fn project_pair(h: &Mat12) -> Mat12 {
     let tol = 1e-10 * h.amax();
     let invariant = (0..12).all(|i| {
         (0..3).all(|c| (h[(i, c)] + h[(i, 3 + c)] + h[(i, 6 + c)] + h[(i, 9 + c)]).abs() <= tol)
@@ -197,7 +198,7 @@ pub(crate) fn mollified_pair_barrier_exact(
         return Some(b);
     }
     let m = mollifier;
-    let mut hessian: Matrix12 = b.hessian * m.value + m.hessian * b.value;
+    let mut hessian: Mat12 = b.hessian * m.value + m.hessian * b.value;
     hessian.ger(1.0, &m.gradient, &b.gradient, 1.0);
     hessian.ger(1.0, &b.gradient, &m.gradient, 1.0);
     Some(Derivatives {
@@ -210,15 +211,15 @@ pub(crate) fn mollified_pair_barrier_exact(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Vec3;
     use crate::collision::distance::tests::{
         Rng, check_derivatives, near_parallel_edges, point_triangle_config, skew_edges, stack,
         unstack,
     };
     use crate::collision::distance::{
-        Vector12, edge_edge_closest, edge_edge_mollifier, edge_edge_squared, mollifier_threshold,
+        edge_edge_closest, edge_edge_mollifier, edge_edge_squared, mollifier_threshold,
         point_triangle_closest, point_triangle_squared,
     };
+    use crate::{Vec3, Vec12};
 
     const XI: f64 = 0.05;
     const DHAT: f64 = 0.2;
@@ -272,7 +273,7 @@ mod tests {
         x
     }
 
-    fn squared(x: &Vector12, triangle: bool) -> Derivatives {
+    fn squared(x: &Vec12, triangle: bool) -> Derivatives {
         let [a, b, c, d] = unstack(x);
         if triangle {
             point_triangle_squared(a, b, c, d)
@@ -282,7 +283,7 @@ mod tests {
     }
 
     /// Random active pairs: point–triangle in every region and skew edges.
-    fn active_pairs(rng: &mut Rng) -> Vec<(Vector12, bool)> {
+    fn active_pairs(rng: &mut Rng) -> Vec<(Vec12, bool)> {
         let mut pairs = Vec::new();
         for i in 0..60 {
             let triangle = i % 4 != 3;
@@ -297,7 +298,7 @@ mod tests {
         pairs
     }
 
-    fn min_eigenvalue(m: &Matrix12) -> f64 {
+    fn min_eigenvalue(m: &Mat12) -> f64 {
         m.symmetric_eigen().eigenvalues.min()
     }
 
@@ -306,7 +307,7 @@ mod tests {
         let mut rng = Rng::new(11);
         for (x, triangle) in active_pairs(&mut rng) {
             let f =
-                |y: &Vector12| pair_barrier_exact(&squared(y, triangle), XI, DHAT).expect("active");
+                |y: &Vec12| pair_barrier_exact(&squared(y, triangle), XI, DHAT).expect("active");
             check_derivatives(f, &x, 1e-7, 1e-5, 1.0);
         }
     }
@@ -336,7 +337,7 @@ mod tests {
     fn projection_keeps_positive_matrices_and_clamps_negative_eigenvalues() {
         let mut rng = Rng::new(13);
         for _ in 0..20 {
-            let a = Matrix12::from_fn(|_, _| rng.uniform(-1.0, 1.0));
+            let a = Mat12::from_fn(|_, _| rng.uniform(-1.0, 1.0));
             let psd = a * a.transpose();
             let p = project_positive(&psd);
             assert!((p - psd).amax() <= 1e-12 * psd.amax());
@@ -367,7 +368,7 @@ mod tests {
             assert!((project_pair(&h) - full).amax() <= 1e-11 * h.amax());
         }
         // Not translation invariant: the full projection.
-        let a = Matrix12::from_fn(|_, _| rng.uniform(-1.0, 1.0));
+        let a = Mat12::from_fn(|_, _| rng.uniform(-1.0, 1.0));
         let m = a + a.transpose();
         assert_eq!(project_pair(&m), project_positive(&m));
     }
@@ -384,13 +385,13 @@ mod tests {
             let s = point_triangle_squared(near[0], near[1], near[2], near[3]);
             let b = pair_barrier(&s, XI, DHAT).expect("infeasible, not inactive");
             assert!(b.value.is_infinite() && b.value > 0.0);
-            assert_eq!(b.gradient, Vector12::zeros());
+            assert_eq!(b.gradient, Vec12::zeros());
         }
     }
 
     /// Nearly parallel edges at an active distance, with their mollifier
     /// threshold (the mollifier is active).
-    fn mollified_pairs(rng: &mut Rng) -> Vec<(Vector12, f64)> {
+    fn mollified_pairs(rng: &mut Rng) -> Vec<(Vec12, f64)> {
         (0..30)
             .map(|_| {
                 let angle = rng.uniform(0.01, 0.03);
@@ -402,7 +403,7 @@ mod tests {
             .collect()
     }
 
-    fn mollified(y: &Vector12, eps: f64, exact: bool) -> Option<Derivatives> {
+    fn mollified(y: &Vec12, eps: f64, exact: bool) -> Option<Derivatives> {
         let [a0, a1, b0, b1] = unstack(y);
         let s = edge_edge_squared(a0, a1, b0, b1);
         let m = edge_edge_mollifier(a0, a1, b0, b1, eps);
@@ -420,7 +421,7 @@ mod tests {
             let [a0, a1, b0, b1] = unstack(&x);
             let m = edge_edge_mollifier(a0, a1, b0, b1, eps).value;
             assert!(m > 0.0 && m < 1.0);
-            let f = |y: &Vector12| mollified(y, eps, true).expect("active");
+            let f = |y: &Vec12| mollified(y, eps, true).expect("active");
             check_derivatives(f, &x, 1e-7, 1e-5, 1.0);
             let exact = f(&x);
             let p = mollified(&x, eps, false).expect("active");
