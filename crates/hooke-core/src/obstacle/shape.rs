@@ -268,8 +268,17 @@ impl Shape {
         }
     }
 
-    /// The first thing wrong with the shape's parameters, if any.
-    pub(crate) fn problem(&self) -> Option<&'static str> {
+    /// The first thing wrong with the shape's parameters, if any: a point
+    /// that is not finite, a radius or half extent that is not positive, a
+    /// zero plane normal, a box turned by a matrix that is not a rotation.
+    ///
+    /// ```
+    /// use hooke_core::{Shape, Vec3};
+    /// let flat = Shape::Sphere { center: Vec3::zeros(), radius: 0.0 };
+    /// assert_eq!(flat.problem(), Some("sphere radius must be positive and finite"));
+    /// ```
+    #[must_use]
+    pub fn problem(&self) -> Option<&'static str> {
         let finite = |v: &Vec3| v.iter().all(|c| c.is_finite());
         let positive = |r: f64| r.is_finite() && r > 0.0;
         match self {
