@@ -1,12 +1,12 @@
 //! [`Tet`]: a volume element, the energy that keeps a tetrahedron's signed
 //! volume near its rest volume and pushes an inverted one back out.
 
-mod decomposition;
+mod svd;
 
 use nalgebra::Matrix3;
 
 use crate::{Mat3, Mat12, Vec3, Vec12};
-use decomposition::{signed_svd, symmetric_eigen};
+use svd::signed_svd;
 
 /// A volume element: four particles, their rest volume and the modulus of
 /// the energy `½ κ V₀ (J − 1)²`.
@@ -52,7 +52,8 @@ use decomposition::{signed_svd, symmetric_eigen};
 /// [`Tet::derivatives`] returns the exact Hessian, the projected one with
 /// these negative eigenvalues clamped to zero — positive semidefinite, equal
 /// to the exact one where that is, at the cost of one 3 × 3 SVD and one
-/// 3 × 3 symmetric eigensolve — or the Gauss–Newton part `κ V₀ ∇J ∇Jᵀ`
+/// 3 × 3 symmetric eigensolve (nalgebra's `SymmetricEigen`, as for the
+/// contact pairs) — or the Gauss–Newton part `κ V₀ ∇J ∇Jᵀ`
 /// ([`TetHessian`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tet {
@@ -342,11 +343,11 @@ impl Tet {
         }
         let g = Vec3::new(s1 * s2, s0 * s2, s0 * s1);
         let a = Matrix3::new(0.0, s2, s1, s2, 0.0, s0, s1, s0, 0.0);
-        let (values, vectors) = symmetric_eigen(stiffness * g * g.transpose() + slope * a);
+        let scaling = (stiffness * g * g.transpose() + slope * a).symmetric_eigen();
         for k in 0..3 {
-            let w = vectors.column(k);
+            let w = scaling.eigenvectors.column(k);
             let q = (0..3).fold(Mat3::zeros(), |q, i| q + w[i] * uc[i] * vc[i].transpose());
-            add_mode(values[k], q);
+            add_mode(scaling.eigenvalues[k], q);
         }
         hessian
     }

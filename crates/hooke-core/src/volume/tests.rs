@@ -1,4 +1,4 @@
-use super::decomposition::{signed_svd, symmetric_eigen};
+use super::svd::signed_svd;
 use super::*;
 
 /// A tet with a non-trivial rest shape, modulus 1000 Pa.
@@ -45,11 +45,10 @@ fn shifted(x: &[Vec3; 4], k: usize, by: f64) -> [Vec3; 4] {
     y
 }
 
-/// The signed SVD and the symmetric eigensolver reproduce their
-/// matrices, with rotations and orthonormal eigenvectors, for general,
+/// The signed SVD reproduces its matrices, with rotations, for general,
 /// inverted, flat and degenerate matrices.
 #[test]
-fn decompositions_reproduce_their_matrices() {
+fn the_signed_svd_reproduces_its_matrices() {
     let mut rng = crate::collision::distance::tests::Rng::new(3);
     let mut cases: Vec<Mat3> = (0..100)
         .map(|_| Mat3::from_fn(|_, _| rng.uniform(-2.0, 2.0)))
@@ -69,11 +68,6 @@ fn decompositions_reproduce_their_matrices() {
         }
         assert!(sigma[0] >= sigma[1] - 1e-12 && sigma[1] >= sigma[2].abs() - 1e-12);
         assert!(sigma[2] * f.determinant() >= -1e-12);
-        let symmetric = f + f.transpose();
-        let (values, vectors) = symmetric_eigen(symmetric);
-        let rebuilt = vectors * Mat3::from_diagonal(&values) * vectors.transpose();
-        assert!((rebuilt - symmetric).norm() < 1e-12 * scale);
-        assert!((vectors.transpose() * vectors - Mat3::identity()).norm() < 1e-12);
     }
 }
 
