@@ -174,32 +174,7 @@ fn surfaces_line(system: &System) -> Option<String> {
 }
 
 fn obstacle_line(obstacle: &Obstacle) -> String {
-    let shape = match obstacle.shape {
-        hooke_core::Shape::Plane { point, normal } => {
-            format!(
-                "plane through {} with normal {}",
-                vector(point),
-                vector(normal)
-            )
-        }
-        hooke_core::Shape::Sphere { center, radius } => {
-            format!("sphere at {} of radius {radius} m", vector(center))
-        }
-        hooke_core::Shape::Box {
-            center,
-            half_extents,
-            ..
-        } => format!(
-            "box at {} with half extents {}",
-            vector(center),
-            vector(half_extents)
-        ),
-        hooke_core::Shape::Capsule { a, b, radius } => format!(
-            "capsule from {} to {} of radius {radius} m",
-            vector(a),
-            vector(b)
-        ),
-    };
+    let shape = &obstacle.shape;
     let motion = match &obstacle.path {
         Path::Fixed => "fixed".to_owned(),
         Path::Linear { velocity } => format!("moving at {} m/s", vector(*velocity)),

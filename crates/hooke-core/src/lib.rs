@@ -88,9 +88,17 @@ pub use spring::{CompressedSprings, Linearized, Spring};
 pub use state::{History, State};
 pub use step::{Start, StepBuffers};
 pub use system::{Inversion, System};
-pub use volume::{Mat12, TET_PAIRS, Tet, TetBlocks, TetDerivatives, TetHessian};
+pub use volume::{TET_PAIRS, Tet, TetBlocks, TetDerivatives, TetHessian};
 
 /// A 3-vector of `f64`: positions, velocities, forces.
 pub type Vec3 = nalgebra::Vector3<f64>;
 /// A 3x3 matrix of `f64`: the Jacobian blocks of a spring.
 pub type Mat3 = nalgebra::Matrix3<f64>;
+/// A 12-vector of `f64`: the coordinates of four particles stacked, particle
+/// `k`'s at `3k..3k + 3` (a volume element's vertices, a contact pair's
+/// points).
+pub type Vec12 = nalgebra::SVector<f64, 12>;
+/// A 12 × 12 matrix of `f64`: a Hessian in the coordinates of a [`Vec12`],
+/// particle `a`'s rows and columns at `3a..3a + 3` (of a volume element, of
+/// a contact pair).
+pub type Mat12 = nalgebra::SMatrix<f64, 12, 12>;
