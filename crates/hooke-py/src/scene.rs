@@ -105,7 +105,8 @@ impl Scene {
     /// particles: a collision surface, self-colliding unless
     /// `self_collision` is false, drawn in the frames), `gravity`,
     /// `air_damping`, `obstacles` (dicts under the keys of a scene file's
-    /// `[[obstacles]]` tables, as `Scene.obstacles` gives them),
+    /// `[[obstacles]]` tables, a box turned by `rotation`, a 3 × 3 matrix
+    /// whose columns are its axes, as `Scene.obstacles` gives them),
     /// `contact_distance` (default: the library's), and the integrator and
     /// timing a run uses. A problem names the argument and the particle,
     /// spring or obstacle at fault.

@@ -107,5 +107,5 @@ fn the_python_package_passes_its_tests() {
     );
     let report = String::from_utf8_lossy(&output.stdout);
     // The closing line, e.g. "42 passed in 61.20s".
-    println!("{}", report.lines().last().unwrap_or_default());
+    eprintln!("pytest: {}", report.lines().last().unwrap_or_default());
 }
