@@ -41,12 +41,17 @@ pub(crate) fn plain(py: Python<'_>, value: &Value) -> PyResult<Py<PyAny>> {
 }
 
 /// `value` as Python for numpy and matplotlib: as [`plain`], but a list of
-/// numbers (and `null`s, as NaN) becomes a float64 array, a list of
+/// whole numbers becomes an int64 array, of numbers (and `null`s, as NaN)
+/// a float64 array, a list of
 /// records with the same keys becomes a dict of columns, each converted
 /// the same way, and a list of booleans a bool array.
 pub(crate) fn columns(py: Python<'_>, value: &Value) -> PyResult<Py<PyAny>> {
     match value {
         Value::Array(items) if !items.is_empty() => {
+            if items.iter().all(Value::is_i64) {
+                let counts: Vec<i64> = items.iter().filter_map(Value::as_i64).collect();
+                return Ok(counts.into_pyarray(py).into_any().unbind());
+            }
             if items.iter().all(|v| v.is_number() || v.is_null()) {
                 let numbers: Vec<f64> = items
                     .iter()
