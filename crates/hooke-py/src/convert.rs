@@ -200,6 +200,21 @@ impl Reader {
         Ok(vectors)
     }
 
+    /// `value` as one vector: three finite numbers.
+    pub(crate) fn vector(&self, value: &Bound<'_, PyAny>) -> PyResult<Vec3> {
+        let (shape, values) = self.floats(value)?;
+        if shape != [3] {
+            return self.fail(format!(
+                "expected 3 numbers, got shape {}",
+                shape_text(&shape)
+            ));
+        }
+        if !values.iter().all(|c| c.is_finite()) {
+            return self.fail(format!("not finite: {values:?}"));
+        }
+        Ok(Vec3::new(values[0], values[1], values[2]))
+    }
+
     /// `value` as `n` numbers: a number (the same for all) or an array of
     /// shape `(n,)`.
     pub(crate) fn per_item(&self, value: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<f64>> {

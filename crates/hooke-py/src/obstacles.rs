@@ -4,7 +4,7 @@
 
 use hooke_core::{Mat3, Obstacle, Path, Shape, Vec3};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::PyDict;
 
 use crate::convert::Reader;
 use crate::errors::scene_error;
@@ -64,10 +64,7 @@ pub(crate) fn from_dict(k: usize, dict: &Bound<'_, PyAny>) -> PyResult<Obstacle>
     };
     let vector = |key: &str, default: Option<Vec3>| -> PyResult<Vec3> {
         match (get(key)?, default) {
-            (Some(value), _) => {
-                let list = PyList::new(value.py(), [value])?;
-                Ok(reader(key).vectors(&list, Some(1))?[0])
-            }
+            (Some(value), _) => reader(key).vector(&value),
             (None, Some(default)) => Ok(default),
             (None, None) => Err(scene_error(format!("{at}: missing key `{key}`"))),
         }

@@ -33,6 +33,7 @@ def test_the_exceptions_are_one_hierarchy():
         (dict(obstacles=[{"shape": "sphere", "center": [0, 0, 0]}]), r"obstacles\[0\]: missing key `radius`"),
         (dict(obstacles=[{"shape": "sphere", "center": [0, 0, 0], "radius": 1, "colour": 1}]), r"obstacles\[0\].colour: no such key"),
         (dict(obstacles=[{"shape": "sphere", "center": [0, 0, 0], "radius": -1.0}]), r"obstacle 0"),
+        (dict(obstacles=[{"shape": "plane", "normal": [0, 1]}]), r"obstacles\[0\].normal: expected 3 numbers, got shape \(2,\)"),
         (dict(dt=0.0), r"timing"),
     ],
 )
