@@ -29,12 +29,9 @@ const STIFFNESS: [(&str, f64); 2] = [("soft", 1e2), ("stiff", 1e6)];
 /// A `side`² sheet with `k h²/m = ratio`, in a wavy, stretched, moving state
 /// (a flat sheet at rest would make the vertical solve trivial).
 fn sheet(side: usize, ratio: f64) -> (System, State) {
-    let base = Sheet::new(side);
-    let particle_mass = base.mass / (side * side) as f64;
     let system = Sheet {
-        stiffness: ratio * particle_mass / (H * H),
         damping: 1e-3,
-        ..base
+        ..Sheet::new(side).with_stiffness_ratio(ratio, H)
     }
     .system()
     .unwrap();

@@ -41,10 +41,10 @@ fn default_scene(c: &mut Criterion) {
     let scene = builtin::load("stiff-cloth").unwrap();
     let steps = steps(&scene);
     let mut linearized = scene.integrator;
-    let IntegratorSpec::Implicit { minimizer, .. } = &mut linearized else {
+    let IntegratorSpec::Implicit(settings) = &mut linearized else {
         panic!("the default scene is implicit");
     };
-    *minimizer = Minimizer::Linearized;
+    settings.minimizer = Minimizer::Linearized;
     let mut group = c.benchmark_group("default-scene");
     group.sample_size(10);
     for (label, spec) in [("converged", scene.integrator), ("linearized", linearized)] {

@@ -8,9 +8,10 @@
 //!
 //! `cargo bench --bench work_precision [-- N … [LABEL …]]` (default N = 50
 //! 100 200; labels select the variants whose names contain them):
-//! the 1 m cloth of N × N particles, 1 kg, stretch / shear / bend
-//! 5000 / 500 / 50 N/m, no damping, two corners pinned, `dt = 1/60 s`,
-//! 30 steps from rest, no self-collision (fast mass-spring has none).
+//! the solver benchmarks' cloth (`Sheet::cloth`) of N × N particles, 1 m,
+//! 1 kg, stretch / shear / bend 5000 / 500 / 50 N/m, no damping, two
+//! corners pinned, `dt = 1/60 s`, 30 steps from rest, no collision surface
+//! (fast mass-spring has no contact).
 //! Prints a Markdown table (`benches/README.md`).
 
 use std::io::Write;
@@ -18,10 +19,6 @@ use std::time::Instant;
 
 use hooke::implicit::{FastMassSpring, LinearSolver, Minimizer, PcgSettings, WeakSprings};
 use hooke::prelude::*;
-
-#[allow(dead_code)] // the bench uses one of the tests' helpers
-#[path = "../tests/common/mod.rs"]
-mod common;
 
 const DT: f64 = 1.0 / 60.0;
 const STEPS: usize = 30;
@@ -228,7 +225,7 @@ fn main() -> std::io::Result<()> {
     )?;
     writeln!(out, "|---|---|---|---|---|---|---|")?;
     for n in sizes {
-        let system = common::bench_cloth(n);
+        let system = Sheet::cloth(n, 0.0).system().unwrap();
         let mut reference = converged(1e-9);
         let (exact, seconds, iterations, _) = run(&system, &mut reference);
         writeln!(

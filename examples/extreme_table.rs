@@ -44,15 +44,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     for scheme in [Implicit::backward_euler as fn() -> Implicit, Implicit::bdf2] {
         for k in only_k.map_or(STIFFNESS.to_vec(), |k| vec![k]) {
-            let system = Sheet {
-                mass: 0.1,
-                stiffness: k,
-                damping: 0.0,
-                air_damping: 0.0,
-                height: 1.0,
-                ..Sheet::new(24)
-            }
-            .system()?;
+            let system = Sheet::conservative(k).system()?;
             for dt in only_dt.map_or(STEPS.to_vec(), |dt| vec![dt]) {
                 let mut integrator = scheme().with_minimizer(minimizer);
                 let mut state = system.initial_state();

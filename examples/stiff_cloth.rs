@@ -11,10 +11,10 @@ use hooke::prelude::*;
 
 fn main() -> Result<(), Error> {
     let (side, dt, steps) = (32, 1.0 / 30.0, 300);
-    let sheet = Sheet::new(side);
+    let sheet = Sheet::new(side).with_stiffness_ratio(1e6, dt);
     let particle_mass = sheet.mass / (side * side) as f64;
-    let stiffness = 1e6 * particle_mass / (dt * dt);
-    let system = Sheet { stiffness, ..sheet }.system()?;
+    let stiffness = sheet.stiffness;
+    let system = sheet.system()?;
 
     // Two particles moving apart along one spring have Rayleigh quotient at
     // least 2k/m, so ω_max ≥ √(2k/m) and every explicit method's stable step,

@@ -72,14 +72,16 @@ pub mod prelude {
     pub use crate::Error;
     pub use hooke_core::reference::{BeadOnString, HangingChain, Oscillator, Sheet};
     pub use hooke_core::{
-        BuildError, EnergyLog, Integrator, ObserveFn, Observer, Obstacle, Path, Run, Shape,
+        BuildError, EnergyLog, Integrator, Named, ObserveFn, Observer, Obstacle, Path, Run, Shape,
         Simulation, State, StepError, StepInfo, StepReport, StrainLog, System, SystemBuilder, Vec3,
     };
     pub use hooke_explicit::{
         Beeman, DormandPrince, ExplicitEuler, Gear, Heun, Leapfrog, Midpoint, PositionVerlet, Rk4,
         SymplecticEuler, VelocityVerlet,
     };
-    pub use hooke_implicit::{Implicit, LinearSolver, Minimizer, PcgSettings, Scheme};
+    pub use hooke_implicit::{
+        Implicit, ImplicitSettings, LinearSolver, Minimizer, PcgSettings, Scheme,
+    };
     pub use hooke_lab::{AccuracyOptions, StabilityOptions, accuracy, stability};
     pub use hooke_scenes::{
         Cloth, IntegratorSpec, Lattice, Layered, Method, Rope, Scene, Shell, Solid, TetMesh,

@@ -4,6 +4,7 @@
 
 mod common;
 
+use hooke::core::reference::Chain;
 use hooke::core::{At, CompressedSprings, ForceEvaluator};
 use hooke::implicit::internals::{BlockJacobi, BlockMatrix, Filter, Pattern, SparseCholesky, cg};
 use hooke::implicit::{ErrorControl, Implicit, LinearSolver, PcgSettings, Terms};
@@ -62,14 +63,7 @@ fn one_backward_euler_step_scales_the_amplitude_by_theory() {
 /// through large angles — with, if `floor`, a floor 10 m below that it
 /// never comes near.
 fn pendulum_chain(floor: bool) -> System {
-    let mut b = SystemBuilder::new();
-    for s in 0..5 {
-        b.particle(0.1, [0.25 * s as f64, 0.0, 0.0]);
-    }
-    for s in 1..5 {
-        b.spring(s - 1, s, 100.0);
-    }
-    b.pin(0).gravity([0.0, -9.81, 0.0]);
+    let mut b = Chain::pendulum(5, 0.1, 100.0, 0.25).builder();
     if floor {
         b.obstacle(Obstacle::new(Shape::Plane {
             point: Vec3::new(0.0, -10.0, 0.0),

@@ -8,25 +8,16 @@
 use hooke::implicit::internals::{Amg, AmgSettings, BlockMatrix, Filter, SparseCholesky, cg};
 use hooke::implicit::{AmgRenewal, AutoSettings, Implicit, LinearSolver, PcgSettings};
 use hooke::prelude::*;
-use hooke::scenes::{Corner, Lattice, Mass, Springs, TetSplit, Volume};
+use hooke::scenes::{Lattice, Mass, TetSplit, Volume};
 
 mod common;
 
 const H: f64 = 1.0 / 60.0;
 
-/// The cloth: 1 m, 1 kg, stretch / shear / bend springs of
-/// 5 000 / 500 / 50 N/m with light damping, two corners pinned.
+/// The solver benchmarks' cloth ([`Sheet::cloth`]), its stretch and shear
+/// springs lightly damped.
 fn cloth(n: usize) -> System {
-    Cloth::grid(n, n)
-        .mass(Mass::Total(1.0))
-        .stretch(Springs::per_spring(5000.0).damping(0.05))
-        .shear(Springs::per_spring(500.0).damping(0.05))
-        .bend(Springs::per_spring(50.0))
-        .pin_corners([Corner::TopLeft, Corner::TopRight])
-        .build()
-        .unwrap()
-        .system([0.0, -9.81, 0.0])
-        .unwrap()
+    Sheet::cloth(n, 0.05).system().unwrap()
 }
 
 /// A 6×5×4 tet lattice pinned at two particles.
@@ -301,11 +292,9 @@ fn auto_times_the_candidates_and_reports_its_choice() {
 /// solve took 2–8 times the iterations). Every solve converges with both.
 #[test]
 fn refreshing_every_level_at_every_solve_takes_fewer_iterations_on_a_falling_cloth() {
-    let system = cloth(40);
-    let mut start = system.initial_state();
-    for x in start.positions_mut() {
-        x.y = 0.02 * (7.0 * x.x).sin() * (5.0 * x.z).cos();
-    }
+    let sheet = Sheet::cloth(40, 0.05);
+    let system = sheet.system().unwrap();
+    let start = sheet.wavy(&system);
     let iterations = |renewal| {
         let mut integrator = Implicit::backward_euler()
             .with_solver(LinearSolver::Amg(PcgSettings::default()))

@@ -1,5 +1,6 @@
-//! The fixtures the groups share: the cloth and its states, the
-//! integrators compared and the benchmark of one step.
+//! The fixtures the groups share: the cloth's states and linearised step
+//! (the cloth itself is `Sheet::cloth`), the integrators compared and the
+//! benchmark of one step.
 
 use std::hint::black_box;
 
@@ -8,7 +9,6 @@ use criterion::{BatchSize, BenchmarkGroup, BenchmarkId};
 use hooke::implicit::internals::{BlockJacobi, BlockMatrix, Filter};
 use hooke::implicit::{AmgRenewal, FastMassSpring, Implicit, LinearSolver, PcgSettings};
 use hooke::prelude::*;
-use hooke::scenes::{Corner, Mass, Springs};
 
 use crate::common;
 
@@ -29,32 +29,6 @@ pub fn sides(name: &str, default: &[usize]) -> Vec<usize> {
                 .collect()
         },
     )
-}
-
-/// The cloth of `n`×`n` particles, its stretch and shear springs
-/// damped by `damping` (N·s/m), without self-collision (fast mass-spring
-/// has none, and the benches measure the linear solvers).
-pub fn cloth(n: usize, damping: f64) -> System {
-    Cloth::grid(n, n)
-        .mass(Mass::Total(1.0))
-        .stretch(Springs::per_spring(5000.0).damping(damping))
-        .shear(Springs::per_spring(500.0).damping(damping))
-        .bend(Springs::per_spring(50.0))
-        .pin_corners([Corner::TopLeft, Corner::TopRight])
-        .build()
-        .unwrap()
-        .self_collision(false)
-        .system([0.0, -9.81, 0.0])
-        .unwrap()
-}
-
-/// The cloth in a wavy state (a flat one has no out-of-plane stiffness).
-pub fn wavy(system: &System) -> State {
-    let mut state = system.initial_state();
-    for x in state.positions_mut() {
-        x.y = 0.02 * (7.0 * x.x).sin() * (5.0 * x.z).cos();
-    }
-    state
 }
 
 /// The backward-Euler system of one linearised step, with its pins'

@@ -5,15 +5,16 @@ use criterion::{BenchmarkId, Criterion};
 use hooke::implicit::internals::{Amg, AmgSettings, FillOrdering, SparseCholesky, cg};
 use hooke::prelude::*;
 
-use crate::fixtures::{DAMPING, cloth, settings, sides, step_system, wavy};
+use crate::fixtures::{DAMPING, settings, sides, step_system};
 
 pub fn linear(c: &mut Criterion) {
     let mut setup = c.benchmark_group("setup");
     setup.sample_size(10);
     let mut cases = Vec::new();
     for n in sides("HOOKE_SOLVER_SIDES", &[50, 100, 200, 400, 1000]) {
-        let system = cloth(n, DAMPING);
-        let state = wavy(&system);
+        let sheet = Sheet::cloth(n, DAMPING);
+        let system = sheet.system().unwrap();
+        let state = sheet.wavy(&system);
         let s = step_system(&system, &state);
         if n <= 400 {
             setup.bench_with_input(BenchmarkId::new("cholesky", n), &n, |b, _| {

@@ -1,8 +1,8 @@
-//! Criterion benchmarks of the linear solvers on the cloth: N×N
-//! particles, 1 m, 1 kg, stretch / shear / bend springs of 5 000 / 500 /
-//! 50 N/m with light damping, two corners pinned, one backward-Euler
-//! system at `h = 1/60 s` from a wavy state, solved to a relative residual
-//! of 10⁻⁶:
+//! Criterion benchmarks of the linear solvers on the cloth
+//! (`Sheet::cloth`): N×N particles, 1 m, 1 kg, stretch / shear / bend
+//! springs of 5 000 / 500 / 50 N/m with light damping, two corners pinned,
+//! one backward-Euler system at `h = 1/60 s` from a wavy state
+//! (`Sheet::wavy`), solved to a relative residual of 10⁻⁶:
 //!
 //! - `setup`: what a solver builds once per topology (Cholesky's symbolic
 //!   analysis, the multigrid hierarchy);

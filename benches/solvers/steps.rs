@@ -9,8 +9,8 @@ use hooke::implicit::{FastMassSpring, Implicit, LinearSolver, PcgSettings};
 use hooke::prelude::*;
 
 use crate::fixtures::{
-    DAMPING, H, bench_step, cloth, distance, linearised_integrators, other_scenes, reference_step,
-    sides, stepped_solvers, swinging, wavy,
+    DAMPING, H, bench_step, distance, linearised_integrators, other_scenes, reference_step, sides,
+    stepped_solvers, swinging,
 };
 
 /// The most iterations of Liu et al.'s step that [`iterations_to_reach`]
@@ -68,7 +68,7 @@ pub fn steps(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
     group.sample_size(10);
     for n in sides("HOOKE_STEP_SIDES", &[50, 100]) {
-        let system = cloth(n, DAMPING);
+        let system = Sheet::cloth(n, DAMPING).system().unwrap();
         let start = swinging(&system);
         let reference = reference_step(&system, &start, n);
         let mut integrators: Vec<(&str, Box<dyn Integrator>)> =
@@ -111,8 +111,9 @@ pub fn linearised_steps(c: &mut Criterion) {
     let mut group = c.benchmark_group("linearised-step");
     group.sample_size(10);
     for n in sides("HOOKE_SOLVER_SIDES", &[50, 100, 200, 400, 1000]) {
-        let system = cloth(n, DAMPING);
-        let start = wavy(&system);
+        let sheet = Sheet::cloth(n, DAMPING);
+        let system = sheet.system().unwrap();
+        let start = sheet.wavy(&system);
         for (name, integrator) in linearised_integrators(n, 200) {
             bench_step(
                 &mut group,
@@ -140,8 +141,9 @@ pub fn runs(c: &mut Criterion) {
     let mut group = c.benchmark_group("run");
     group.sample_size(10);
     for n in sides("HOOKE_RUN_SIDES", &[50, 100]) {
-        let system = cloth(n, DAMPING);
-        let start = wavy(&system);
+        let sheet = Sheet::cloth(n, DAMPING);
+        let system = sheet.system().unwrap();
+        let start = sheet.wavy(&system);
         for (name, integrator) in linearised_integrators(n, 0) {
             let mut state = start.clone();
             let mut fresh = integrator();
@@ -180,7 +182,7 @@ pub fn equal_accuracy(c: &mut Criterion) {
     let mut group = c.benchmark_group("equal-accuracy");
     group.sample_size(10);
     for n in sides("HOOKE_EQUAL_SIDES", &[50, 100]) {
-        let system = cloth(n, 0.0);
+        let system = Sheet::cloth(n, 0.0).system().unwrap();
         let start = swinging(&system);
         let reference = reference_step(&system, &start, n);
         let mut converged = start.clone();

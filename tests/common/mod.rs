@@ -5,7 +5,7 @@ use hooke::core::{At, CompressedSprings};
 use hooke::implicit::Terms;
 use hooke::implicit::internals::{BlockJacobi, BlockMatrix, Pattern};
 use hooke::prelude::*;
-use hooke::scenes::{Corner, Mass, Springs, TetSplit, Volume};
+use hooke::scenes::{Mass, Springs, TetSplit, Volume};
 
 /// Largest error of the bob against the exact solution over `[0, t_end]`,
 /// checked after every step: `max(|u − u*|, |u' − u*'|/ω)`.
@@ -77,27 +77,6 @@ pub fn linearised_step(
 /// particle, `Free` otherwise (the library's own, which its solvers use).
 #[allow(unused_imports)] // only the linear-solver tests and benches filter
 pub use hooke::implicit::internals::pin_filters;
-
-/// The cloth of the `work_precision` bench: 1 m, `n` × `n` particles,
-/// 1 kg, stretch / shear / bend springs of 5000 / 500 / 50 N/m, no
-/// damping, two corners pinned, no self-collision, under gravity.
-#[allow(dead_code)] // used by the quasi-Newton tests and the work-precision bench
-pub fn bench_cloth(n: usize) -> System {
-    let body = Cloth::grid(n, n)
-        .size(1.0, 1.0)
-        .mass(Mass::Total(1.0))
-        .stretch(5000.0)
-        .shear(500.0)
-        .bend(50.0)
-        .pin_corners([Corner::TopLeft, Corner::TopRight])
-        .build()
-        .unwrap()
-        .self_collision(false);
-    let mut b = SystemBuilder::new();
-    body.add_to(&mut b);
-    b.gravity([0.0, -9.81, 0.0]);
-    b.build().unwrap()
-}
 
 /// A rope of `segments + 1` particles, 10 m, 1 kg, stretch / bend springs of
 /// 10 000 / 100 N/m (stretch damped by 0.05 N·s/m), its start pinned.

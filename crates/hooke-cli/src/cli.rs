@@ -17,7 +17,7 @@ use crate::describe::{describe, step_text};
 use crate::lab::{
     AccuracyArgs, MergeArgs, StabilityArgs, accuracy_command, merge_command, stability_command,
 };
-use crate::run_options::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE};
+use crate::run_options::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, USD_FILE};
 use crate::runner::run;
 use crate::scene_source::load_scene;
 use crate::summary::Summary;
@@ -37,8 +37,8 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Run a scene and write its frames, preview.png, animation.gif and
-    /// summary.json.
+    /// Run a scene and write its frames, preview.png, animation.gif,
+    /// animation.usda and summary.json.
     Run(RunArgs),
     /// List the built-in scenes.
     Scenes,
@@ -74,6 +74,9 @@ struct RunArgs {
     /// Do not write animation.gif.
     #[arg(long)]
     no_gif: bool,
+    /// Do not write animation.usda.
+    #[arg(long)]
+    no_usd: bool,
     /// Simulated seconds to run instead of the scene's own duration.
     #[arg(long, value_name = "SECONDS")]
     duration: Option<f64>,
@@ -168,6 +171,7 @@ fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
     let options = RunOptions::new(&args.out)
         .gif(!args.no_gif)
+        .usd(!args.no_usd)
         .preview_time(args.preview_time);
     let mut progress = ObserveFn(|_: &System, _: &State, step: &StepInfo| {
         bar.set_position(step.index as u64);
@@ -176,7 +180,7 @@ fn run_command(args: &RunArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let summary = run(&scene, &options, &mut progress);
     bar.finish_and_clear();
     let summary = summary?;
-    report(&summary, !args.no_gif, out)?;
+    report(&summary, !args.no_gif, !args.no_usd, out)?;
     match summary.error {
         Some(reason) => Err(CliError::RunStopped {
             steps: summary.steps,
@@ -196,7 +200,7 @@ fn run_scene(args: &RunArgs) -> Result<Scene, CliError> {
 }
 
 /// Prints what a run did and where its files are.
-fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<()> {
+fn report(summary: &Summary, gif: bool, usd: bool, out: &mut dyn Write) -> std::io::Result<()> {
     // A direct solver takes no linear iterations: they are named only
     // when an iterative one took some.
     let newton = summary.newton_iterations_mean.unwrap_or(0.0);
@@ -255,6 +259,9 @@ fn report(summary: &Summary, gif: bool, out: &mut dyn Write) -> std::io::Result<
             )?;
             if gif {
                 writeln!(out, "animation: {dir}/{ANIMATION_FILE}")?;
+            }
+            if usd {
+                writeln!(out, "usd: {dir}/{USD_FILE}")?;
             }
         }
         _ => writeln!(out, "pictures: none, no frame was written")?,

@@ -2,8 +2,8 @@
 
 use std::fmt::Write;
 
-use hooke_core::{Obstacle, Path, System, Vec3};
-use hooke_implicit::{AutoSettings, LinearSolver, Minimizer};
+use hooke_core::{Named, Obstacle, Path, System, Vec3};
+use hooke_implicit::{AutoSettings, ImplicitSettings, LinearSolver, Minimizer, PcgSettings};
 use hooke_scenes::{IntegratorSpec, Scene, SceneBody};
 
 use crate::cli_error::CliError;
@@ -13,8 +13,9 @@ use crate::runner::check_timing;
 /// bodies with what each draws and its volume elements with their modulus
 /// (see `hooke_scenes::Volume`), its obstacles, its collision surfaces (how
 /// many collide with themselves, their thickness and the contact
-/// distance), the integrator with its parameters and the timing with the
-/// number of steps and frames.
+/// distance), the integrator with its parameters (an implicit one's
+/// settings also as the scene file's keys, every default included) and
+/// the timing with the number of steps and frames.
 ///
 /// ```
 /// use hooke_scenes::{Cloth, IntegratorSpec, Scene, SceneBody, Timing};
@@ -92,6 +93,9 @@ pub fn describe(scene: &Scene) -> Result<String, CliError> {
             integrator_parameters(&scene.integrator, system.particle_count())
         ),
     );
+    if let IntegratorSpec::Implicit(settings) = &scene.integrator {
+        line("settings", settings_line(settings));
+    }
     let timing = scene.timing;
     let (steps, every) = (timing.steps(), timing.steps_per_frame());
     line(
@@ -170,32 +174,7 @@ fn surfaces_line(system: &System) -> Option<String> {
 }
 
 fn obstacle_line(obstacle: &Obstacle) -> String {
-    let shape = match obstacle.shape {
-        hooke_core::Shape::Plane { point, normal } => {
-            format!(
-                "plane through {} with normal {}",
-                vector(point),
-                vector(normal)
-            )
-        }
-        hooke_core::Shape::Sphere { center, radius } => {
-            format!("sphere at {} of radius {radius} m", vector(center))
-        }
-        hooke_core::Shape::Box {
-            center,
-            half_extents,
-            ..
-        } => format!(
-            "box at {} with half extents {}",
-            vector(center),
-            vector(half_extents)
-        ),
-        hooke_core::Shape::Capsule { a, b, radius } => format!(
-            "capsule from {} to {} of radius {radius} m",
-            vector(a),
-            vector(b)
-        ),
-    };
+    let shape = &obstacle.shape;
     let motion = match &obstacle.path {
         Path::Fixed => "fixed".to_owned(),
         Path::Linear { velocity } => format!("moving at {} m/s", vector(*velocity)),
@@ -215,66 +194,83 @@ fn integrator_parameters(spec: &IntegratorSpec, particles: usize) -> String {
         IntegratorSpec::FastMassSpring { iterations } => {
             format!(", {iterations} local/global iterations per step")
         }
-        IntegratorSpec::Implicit {
-            solver,
-            minimizer,
-            newton_iterations,
-            newton_tolerance,
-            max_halvings,
-            strict,
-            error_control,
-            ..
-        } => {
-            let substeps = match error_control {
-                Some(control) => format!(
-                    "error-controlled substeps to rtol {:e}, atol {:e} m",
-                    control.relative(),
-                    control.absolute()
-                ),
-                None => format!("rejected steps halved at most {max_halvings} times"),
-            };
-            let strict = if strict { ", strict" } else { "" };
-            let solver_setting = solver;
-            let solver = match solver {
-                LinearSolver::Cholesky => "sparse Cholesky".to_owned(),
-                LinearSolver::Auto if particles < AutoSettings::DEFAULT.trial_particles => format!(
-                    "auto: sparse Cholesky (below {} particles)",
-                    AutoSettings::DEFAULT.trial_particles
-                ),
-                LinearSolver::Auto => "auto: sparse Cholesky, multigrid PCG or block-Jacobi PCG, \
-                     whichever a timed trial at the first solve (and, when two come close, \
-                     the next two steps) finds fastest"
-                    .to_owned(),
-                LinearSolver::Amg(pcg) => format!(
-                    "multigrid PCG to {:e} in at most {} iterations",
-                    pcg.tolerance(),
-                    pcg.max_iterations()
-                ),
-                LinearSolver::Pcg(pcg) => format!(
-                    "PCG to {:e} in at most {} iterations",
-                    pcg.tolerance(),
-                    pcg.max_iterations()
-                ),
-                LinearSolver::LaggedCholesky(pcg) => format!(
-                    "PCG with a lagged Cholesky factor to {:e} in at most {} iterations",
-                    pcg.tolerance(),
-                    pcg.max_iterations()
-                ),
-            };
-            match minimizer {
-                Minimizer::Linearized => {
-                    format!(", {solver}, linearised (Baraff-Witkin, one solve)")
-                }
-                Minimizer::Newton => format!(
-                    ", {solver}, converged: at most {newton_iterations} Newton iterations to a relative {newton_tolerance:e}, {substeps}{strict}"
-                ),
-                Minimizer::QuasiNewton { history, carried } => format!(
-                    ", quasi-Newton (L-BFGS, history {history}, {carried} carried into the next step, initial Hessian the spring Laplacian, {}): at most {newton_iterations} iterations to a relative {newton_tolerance:e}, {substeps}{strict}",
-                    initial_hessian(solver_setting)
-                ),
-            }
-        }
+        IntegratorSpec::Implicit(settings) => implicit_parameters(&settings, particles),
     }
+}
+
+/// The implicit step of `settings` for a system of `particles` particles:
+/// the solver and the minimiser by their names with what they do, and
+/// the substeps.
+fn implicit_parameters(settings: &ImplicitSettings, particles: usize) -> String {
+    let ImplicitSettings {
+        solver,
+        minimizer,
+        newton_iterations,
+        newton_tolerance,
+        max_halvings,
+        strict,
+        error_control,
+        ..
+    } = *settings;
+    let substeps = match error_control {
+        Some(control) => format!(
+            "error-controlled substeps to rtol {:e}, atol {:e} m",
+            control.relative(),
+            control.absolute()
+        ),
+        None => format!("rejected steps halved at most {max_halvings} times"),
+    };
+    let strict = if strict { ", strict" } else { "" };
+    let pcg = |what: &str, pcg: PcgSettings| {
+        format!(
+            "{what} to {:e} in at most {} iterations",
+            pcg.tolerance(),
+            pcg.max_iterations()
+        )
+    };
+    let trial = AutoSettings::DEFAULT.trial_particles;
+    let what = match solver {
+        LinearSolver::Cholesky => "sparse Cholesky".to_owned(),
+        LinearSolver::Auto if particles < trial => {
+            format!("sparse Cholesky (below {trial} particles)")
+        }
+        LinearSolver::Auto => "sparse Cholesky, multigrid PCG or block-Jacobi PCG, \
+             whichever a timed trial at the first solve (and, when two come close, \
+             the next two steps) finds fastest"
+            .to_owned(),
+        LinearSolver::Amg(settings) => pcg("multigrid PCG", settings),
+        LinearSolver::Pcg(settings) => pcg("block-Jacobi PCG", settings),
+        LinearSolver::LaggedCholesky(settings) => {
+            pcg("PCG with a lagged Cholesky factor", settings)
+        }
+    };
+    let solver_text = format!("{}: {what}", solver.name());
+    let step = minimizer.name();
+    match minimizer {
+        Minimizer::Linearized => {
+            format!(", {solver_text}, {step}: Baraff-Witkin, one solve")
+        }
+        Minimizer::Newton => format!(
+            ", {solver_text}, {step}: at most {newton_iterations} Newton iterations to a relative {newton_tolerance:e}, {substeps}{strict}"
+        ),
+        Minimizer::QuasiNewton { history, carried } => format!(
+            ", {step}: L-BFGS (history {history}, {carried} carried into the next step, initial Hessian the spring Laplacian, {}), at most {newton_iterations} iterations to a relative {newton_tolerance:e}, {substeps}{strict}",
+            initial_hessian(solver)
+        ),
+    }
+}
+
+/// Every implicit setting as the scene file's `[integrator]` table writes
+/// it, `key = value`, the defaults included
+/// ([`ImplicitSettings::keys`]), but the scheme (the method's name).
+fn settings_line(settings: &ImplicitSettings) -> String {
+    settings
+        .keys()
+        .into_iter()
+        .filter(|&(key, _)| key != "scheme")
+        .map(|(key, value)| format!("{key} = {value}"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// How the quasi-Newton step applies its initial Hessian's inverse under

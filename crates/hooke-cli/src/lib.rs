@@ -10,6 +10,7 @@
 //! | `frame_00000.ply`, `frame_00001.ply`, ... | binary little-endian PLY, one file per written frame (see `hooke-viz`) |
 //! | `preview.png` | an RGBA PNG picture of the frame where the bodies rest on the obstacles |
 //! | `animation.gif` | a looping GIF of the rendered frames |
+//! | `animation.usda` | the frames as one USD animation, for Blender, Houdini and usdview: every body a mesh (curves for a rope) with its points sampled at every frame, the obstacles as their shapes (see `hooke_viz::usd`) |
 //! | `summary.json` | the [`Summary`]: what ran, how long each step took, solver work, energy, strain, how close the collision surfaces came, how many volume elements turned inside out, whether the state stayed finite |
 //!
 //! The pictures and files themselves are drawn and written by `hooke-viz`.
@@ -28,7 +29,7 @@
 //! arguments and output streams passed in, so it can be tested in-process.
 //!
 //! ```text
-//! hooke [run] [SCENE.toml] [--builtin NAME] [--out DIR] [--no-gif] [--duration S] [--preview-time S] [--quiet]
+//! hooke [run] [SCENE.toml] [--builtin NAME] [--out DIR] [--no-gif] [--no-usd] [--duration S] [--preview-time S] [--quiet]
 //! hooke scenes                 # the built-in scenes
 //! hooke check SCENE.toml       # validate a scene file and say what it holds
 //! hooke stability [SCENE.toml] [--builtin NAME] [--methods A,B] [--stiffness VALUES]
@@ -100,15 +101,17 @@ mod pictures;
 mod run_options;
 mod runner;
 mod scene_source;
+mod settings_keys;
 mod step_record;
 mod summary;
 mod surface_record;
+mod usd_file;
 mod volume_record;
 
 pub use cli::{main, run_cli};
 pub use cli_error::CliError;
 pub use describe::describe;
-pub use run_options::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE};
+pub use run_options::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, USD_FILE};
 pub use runner::run;
 pub use scene_source::DEFAULT_SCENE;
 pub use summary::{SolverName, Summary};

@@ -10,6 +10,9 @@ pub const SUMMARY_FILE: &str = "summary.json";
 pub const PREVIEW_FILE: &str = "preview.png";
 /// The file name of the animation of the frames.
 pub const ANIMATION_FILE: &str = "animation.gif";
+/// The file name of the frames as one USD animation (see
+/// [`hooke_viz::usd`]).
+pub const USD_FILE: &str = "animation.usda";
 
 /// Where a [`run`](crate::run) writes and what.
 #[derive(Debug, Clone, PartialEq)]
@@ -18,6 +21,8 @@ pub struct RunOptions {
     pub out: PathBuf,
     /// Whether to write [`ANIMATION_FILE`].
     pub gif: bool,
+    /// Whether to write [`USD_FILE`].
+    pub usd: bool,
     /// The simulated time, s, whose frame (the nearest written)
     /// [`PREVIEW_FILE`] shows instead of the frame of the bodies at rest;
     /// finite and not negative.
@@ -29,18 +34,19 @@ pub struct RunOptions {
 }
 
 impl RunOptions {
-    /// Writes everything into `out`: a 960×720 preview and a 480×360
-    /// animation.
+    /// Writes everything into `out`: a 960×720 preview, a 480×360
+    /// animation and the USD animation.
     ///
     /// ```
     /// let options = hooke_cli::RunOptions::new("hooke-out");
-    /// assert!(options.gif);
+    /// assert!(options.gif && options.usd);
     /// ```
     #[must_use]
     pub fn new(out: impl Into<PathBuf>) -> Self {
         Self {
             out: out.into(),
             gif: true,
+            usd: true,
             preview_time: None,
             preview_size: (960, 720),
             gif_size: (480, 360),
@@ -56,6 +62,17 @@ impl RunOptions {
     #[must_use]
     pub fn gif(self, gif: bool) -> Self {
         Self { gif, ..self }
+    }
+
+    /// The same options with the USD animation written or not.
+    ///
+    /// ```
+    /// let options = hooke_cli::RunOptions::new("hooke-out").usd(false);
+    /// assert!(!options.usd);
+    /// ```
+    #[must_use]
+    pub fn usd(self, usd: bool) -> Self {
+        Self { usd, ..self }
     }
 
     /// The same options with the preview showing the frame nearest the

@@ -21,6 +21,7 @@ use crate::run_options::{RunOptions, SUMMARY_FILE};
 use crate::step_record::StepRecord;
 use crate::summary::{Intersections, Summary, median};
 use crate::surface_record::SurfaceRecord;
+use crate::usd_file::write_usd;
 use crate::volume_record::VolumeRecord;
 
 /// Runs `scene` and writes its output into `options.out`:
@@ -38,6 +39,9 @@ use crate::volume_record::VolumeRecord;
 /// - [`ANIMATION_FILE`](crate::ANIMATION_FILE): the frames subsampled to at most
 ///   [`MAX_GIF_FRAMES`](hooke_viz::MAX_GIF_FRAMES) pictures that play in
 ///   about real time;
+/// - [`USD_FILE`](crate::USD_FILE) (unless [`RunOptions::usd`] is off):
+///   every written frame in one USD animation, read back from the frame
+///   files after the run;
 /// - [`SUMMARY_FILE`]: the [`Summary`], which is also returned.
 ///
 /// Both pictures are drawn after the run, from the frame files, by one
@@ -52,12 +56,15 @@ use crate::volume_record::VolumeRecord;
 /// collision surfaces came after every step (see
 /// [`Summary::close_pairs_max`]), a record of the volume elements
 /// inverted after every step ([`Summary::inverted_elements_max`]), an
-/// [`EnergyLog`] and a [`StrainLog`] sampled at the written frames, and `progress`, the caller's (a progress
-/// bar), called after every step. For a system with collision surfaces the
-/// last state's intersecting triangles are counted, in all and by the
-/// bodies they belong to ([`Summary::intersecting_triangle_pairs`],
-/// [`Summary::intersections`]). The wall time spent
-/// writing frames and pictures is [`Summary::output_s`].
+/// [`EnergyLog`] and a [`StrainLog`] sampled at the written frames, and
+/// `progress`, the caller's (a progress bar, or a check for an interrupt),
+/// called after every step; it may stop the run (`ControlFlow::Break`),
+/// which then ends as if that step were its last. For a system with
+/// collision surfaces the last state's intersecting triangles are counted,
+/// in all and by the bodies they belong to
+/// ([`Summary::intersecting_triangle_pairs`], [`Summary::intersections`]).
+/// The wall time spent writing frames, pictures and the USD animation is
+/// [`Summary::output_s`].
 ///
 /// A step that fails (a non-finite state, a solver failure) or leaves a
 /// position beyond what a frame file holds (`|x| > f32::MAX`: the run has
@@ -123,7 +130,12 @@ pub fn run(
         timing.frame_rate,
         options,
     )?;
-    let output = frames_wall + pictures.map_or(Duration::ZERO, |p| p.wall);
+    let usd = if options.usd && !frames.is_empty() {
+        write_usd(&options.out, scene, &mesh, &frames)?
+    } else {
+        Duration::ZERO
+    };
+    let output = frames_wall + pictures.map_or(Duration::ZERO, |p| p.wall) + usd;
 
     let failure = match (run.failure(), record.diverged.take()) {
         (Some(error), _) => Some((
@@ -138,7 +150,11 @@ pub fn run(
     };
     let taken = run.steps;
     let total = run.report;
-    let implicit = matches!(scene.integrator, IntegratorSpec::Implicit { .. });
+    let implicit_settings = match scene.integrator {
+        IntegratorSpec::Implicit(settings) => Some(settings),
+        _ => None,
+    };
+    let implicit = implicit_settings.is_some();
     let per_step = |count: usize| implicit.then(|| mean(count, taken));
     let energies = energy.samples();
     let (mut energy_gain, energy_gain_time) = budget.max_gain();
@@ -157,6 +173,7 @@ pub fn run(
     let summary = Summary {
         scene: scene.name.clone(),
         integrator: integrator.name().to_owned(),
+        implicit_settings,
         dt: timing.dt,
         steps: taken,
         steps_planned: steps,

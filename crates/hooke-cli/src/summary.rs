@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use hooke_core::Named;
 use hooke_implicit::LinearSolver;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize};
@@ -20,6 +21,14 @@ pub struct Summary {
     pub scene: String,
     /// The integrator's name, e.g. `"backward-euler"`.
     pub integrator: String,
+    /// The settings of an implicit integrator (`None` for the others),
+    /// written as the keys of the scene file's `[integrator]` table with
+    /// every enum by its table's name: each key that applies to the run's
+    /// solver and step, defaults included (`weak_springs` the one used;
+    /// `rtol` and `atol` only with error control). See
+    /// [`ImplicitSettings::keys`](hooke_implicit::ImplicitSettings::keys).
+    #[serde(default, with = "crate::settings_keys")]
+    pub implicit_settings: Option<hooke_implicit::ImplicitSettings>,
     /// Step size, s.
     pub dt: f64,
     /// Steps taken (fewer than [`steps_planned`](Self::steps_planned) if
@@ -61,7 +70,7 @@ pub struct Summary {
     /// Linear systems solved.
     pub linear_solves: usize,
     /// The linear solver of the last solve, its name in the one table of
-    /// solver names, [`LinearSolver::NAMES`] (`"cholesky"`, `"pcg"`,
+    /// solver names, [`LinearSolver`]'s [`Named::TABLE`] (`"cholesky"`, `"pcg"`,
     /// `"amg"`: what `solver = "auto"` chose); `None` if the integrator
     /// solves no linear systems.
     #[serde(default, deserialize_with = "solver_name")]
@@ -181,19 +190,24 @@ pub struct Intersections {
     pub collide: bool,
 }
 
-/// A linear solver's name, an entry of [`LinearSolver::NAMES`]. (A name
-/// for the type, so that serde reads it as the table's entry instead of
-/// borrowing it from the input.)
+/// A linear solver's name, an entry of [`LinearSolver`]'s table
+/// ([`Named::TABLE`]). (A name for the type, so that serde reads it as the
+/// table's entry instead of borrowing it from the input.)
 pub type SolverName = &'static str;
 
-/// A solver's name read as its entry of [`LinearSolver::NAMES`]; a name
+/// A solver's name read as its entry of [`LinearSolver`]'s table; a name
 /// not in the table is an error.
 fn solver_name<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Option<SolverName>, D::Error> {
     Option::<String>::deserialize(deserializer)?
         .map(|name| {
             LinearSolver::from_name(&name)
                 .map(LinearSolver::name)
-                .ok_or_else(|| D::Error::unknown_variant(&name, &LinearSolver::NAMES))
+                .ok_or_else(|| {
+                    D::Error::custom(format!(
+                        "got \"{name}\", expected {}",
+                        LinearSolver::quoted_names()
+                    ))
+                })
         })
         .transpose()
 }

@@ -5,7 +5,7 @@
 use std::ops::ControlFlow;
 use std::path::Path;
 
-use hooke_cli::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, Summary, run};
+use hooke_cli::{ANIMATION_FILE, PREVIEW_FILE, RunOptions, SUMMARY_FILE, Summary, USD_FILE, run};
 use hooke_core::{ObserveFn, Obstacle, Shape, State, StepInfo, System, SystemBuilder, Vec3};
 use hooke_scenes::{
     Body, Cloth, Corner, ExplicitMethod, IntegratorSpec, Rope, Scene, SceneBody, Springs, Timing,
@@ -239,6 +239,59 @@ fn explicit_run_has_no_linear_iterations_and_draws_segments() {
 }
 
 #[test]
+fn the_usd_animation_samples_every_frame_and_can_be_left_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rope");
+    let summary = run(&swinging_rope(), &RunOptions::new(&out).gif(false), &mut ()).unwrap();
+    let text = std::fs::read_to_string(out.join(USD_FILE)).unwrap();
+    // 200 steps of 1 ms, a frame every 20: time codes 0..=10 at 50 a second.
+    for line in [
+        "startTimeCode = 0",
+        "endTimeCode = 10",
+        "timeCodesPerSecond = 50",
+        "upAxis = \"Y\"",
+        "def BasisCurves \"rope\"",
+        "int[] curveVertexCounts = [11]",
+        "def Mesh \"plane\"",
+    ] {
+        assert!(text.contains(line), "{line}");
+    }
+    let samples: Vec<&str> = text
+        .lines()
+        .skip_while(|l| !l.contains("points.timeSamples"))
+        .skip(1)
+        .take_while(|l| !l.trim().starts_with('}'))
+        .collect();
+    assert_eq!(samples.len(), summary.frames);
+    // The last frame's points are the last PLY frame's, as f32.
+    let last = hooke_viz::read_ply(
+        &out.join(hooke_viz::frame_file_name(10)),
+        &hooke_viz::scene_mesh(&swinging_rope()).unwrap(),
+    )
+    .unwrap();
+    let written: Vec<f32> = samples[10]
+        .trim_start_matches(|c| c != '[')
+        .trim_matches(['[', ']', ','])
+        .split(['(', ')', ','])
+        .filter_map(|c| c.trim().parse().ok())
+        .collect();
+    let frame: Vec<f32> = last
+        .iter()
+        .flat_map(|p| p.iter().map(|&c| c as f32))
+        .collect();
+    assert_eq!(written, frame);
+
+    let out = dir.path().join("without");
+    run(
+        &swinging_rope(),
+        &RunOptions::new(&out).gif(false).usd(false),
+        &mut (),
+    )
+    .unwrap();
+    assert!(out.join(SUMMARY_FILE).exists() && !out.join(USD_FILE).exists());
+}
+
+#[test]
 fn a_run_that_blows_up_ends_with_finite_false_and_an_error() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("boom");
@@ -311,15 +364,10 @@ fn converged_backward_euler_gains_no_energy_and_warns_of_nothing() {
 #[test]
 fn steps_accepted_unconverged_are_warned_of_and_strict_mode_stops_the_run() {
     let mut scene = cloth_on_sphere(0.2);
-    let IntegratorSpec::Implicit {
-        newton_iterations,
-        max_halvings,
-        ..
-    } = &mut scene.integrator
-    else {
+    let IntegratorSpec::Implicit(settings) = &mut scene.integrator else {
         unreachable!("the scene is implicit")
     };
-    (*newton_iterations, *max_halvings) = (1, 0);
+    (settings.newton_iterations, settings.max_halvings) = (1, 0);
     let dir = tempfile::tempdir().unwrap();
     let summary = run(&scene, &RunOptions::new(dir.path()).gif(false), &mut ()).unwrap();
     assert!(summary.error.is_none());
@@ -339,10 +387,10 @@ fn steps_accepted_unconverged_are_warned_of_and_strict_mode_stops_the_run() {
         Some(summary.warnings.len())
     );
 
-    let IntegratorSpec::Implicit { strict, .. } = &mut scene.integrator else {
+    let IntegratorSpec::Implicit(settings) = &mut scene.integrator else {
         unreachable!("the scene is implicit")
     };
-    *strict = true;
+    settings.strict = true;
     let summary = run(&scene, &RunOptions::new(dir.path()).gif(false), &mut ()).unwrap();
     assert_eq!(summary.steps, 0);
     let error = summary.error.expect("strict mode fails the first step");

@@ -65,6 +65,7 @@ mod error;
 mod forces;
 mod integrator;
 mod logs;
+mod named;
 mod observer;
 mod obstacle;
 pub mod reference;
@@ -84,6 +85,7 @@ pub use error::{BuildError, Parameter, ParameterError, Quantity, SpringParameter
 pub use forces::{ForceEvaluator, PARALLEL_MIN_SPRINGS, Parallelism};
 pub use integrator::{Integrator, StepReport, check_step};
 pub use logs::{EnergyLog, EnergySample, StrainLog};
+pub use named::{Named, quoted_list};
 pub use observer::{ObserveFn, Observer, StepInfo};
 pub use obstacle::{Obstacle, Path, Shape};
 pub use simulation::{End, Run, Simulation};
@@ -93,9 +95,17 @@ pub use step::{Start, StepBuffers};
 pub use sym_block::SymBlock;
 pub use system::{Inversion, System};
 pub use term::{At, Hessian, Potential, StepStart, Term, When};
-pub use volume::{Mat12, TET_PAIRS, Tet, TetBlocks, TetDerivatives, TetHessian};
+pub use volume::{TET_PAIRS, Tet, TetBlocks, TetDerivatives, TetHessian};
 
 /// A 3-vector of `f64`: positions, velocities, forces.
 pub type Vec3 = nalgebra::Vector3<f64>;
 /// A 3x3 matrix of `f64`: the Jacobian blocks of a spring.
 pub type Mat3 = nalgebra::Matrix3<f64>;
+/// A 12-vector of `f64`: the coordinates of four particles stacked, particle
+/// `k`'s at `3k..3k + 3` (a volume element's vertices, a contact pair's
+/// points).
+pub type Vec12 = nalgebra::SVector<f64, 12>;
+/// A 12 × 12 matrix of `f64`: a Hessian in the coordinates of a [`Vec12`],
+/// particle `a`'s rows and columns at `3a..3a + 3` (of a volume element, of
+/// a contact pair).
+pub type Mat12 = nalgebra::SMatrix<f64, 12, 12>;

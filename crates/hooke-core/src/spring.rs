@@ -43,6 +43,13 @@ pub enum CompressedSprings {
     Exact,
 }
 
+impl crate::Named for CompressedSprings {
+    /// `"clamped"` and `"exact"`, as scene files (`compressed_springs`) and
+    /// reports spell them.
+    const TABLE: &'static [(Self, &'static str)] =
+        &[(Self::Clamped, "clamped"), (Self::Exact, "exact")];
+}
+
 /// A spring's elastic force on its first end and its stiffness block in
 /// factored form, `H = k_∥ d dᵀ + k_⊥ (I − d dᵀ)`: axial stiffness
 /// `k_∥ = k`, transverse stiffness `k_⊥ = k (1 − L/l)` (clamped at zero

@@ -42,6 +42,13 @@
 //! (each giving `Φ` and its gradient) an iteration, the same line search,
 //! stopping rule, energy test and substeps.
 //!
+//! Everything that configures a step — the scheme, the minimiser and its
+//! stopping rule, the solver, the substeps — is one plain
+//! [`ImplicitSettings`] with the library's defaults, which scene files,
+//! the lab, the command line and `summary.json` set and report by the same
+//! keys ([`ImplicitSettings::from_keys`], [`ImplicitSettings::keys`]), each
+//! enum by the names of its one table ([`Named`](hooke_core::Named)).
+//!
 //! Beside [`Implicit`], [`FastMassSpring`] takes backward-Euler steps the
 //! way Liu et al. (2013) do: a fixed number of local/global iterations on a
 //! constant, prefactored matrix, converging to the same step.
@@ -133,6 +140,8 @@ pub use minimize::terms::Terms;
 pub use step::error_control::{self, ErrorControl};
 pub use step::implicit::Implicit;
 pub use step::scheme::{Minimizer, Scheme};
+pub use step::settings::ImplicitSettings;
+pub use step::settings::keys::{KeyError, KeyProblem, KeyValue};
 
 /// The building blocks of a step — the block matrix and its pattern, the
 /// filters, PCG, sparse Cholesky and multigrid — for the

@@ -3,35 +3,30 @@
 
 use hooke_core::{Integrator, ParameterError};
 use hooke_explicit::DormandPrince;
-use hooke_implicit::{Implicit, LinearSolver, Minimizer};
+use hooke_implicit::ImplicitSettings;
 use hooke_scenes::{IntegratorSpec, Method};
 
 /// The parameters the lab gives the methods that have any: the implicit
-/// methods' solver and Newton iterations, Dormand–Prince's tolerance.
+/// methods' settings, Dormand–Prince's tolerance.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
-    /// The implicit methods' linear solver, with its settings.
-    pub solver: LinearSolver,
-    /// How the implicit steps minimise their incremental potential.
-    pub minimizer: Minimizer,
-    /// Cap on Newton iterations per implicit (sub)step.
-    pub newton_iterations: usize,
-    /// Relative Newton tolerance (see `hooke_implicit::Implicit`).
-    pub newton_tolerance: f64,
+    /// The settings of backward Euler and BDF2, each measured with its own
+    /// scheme ([`ImplicitSettings::scheme`] is the method's, whatever this
+    /// says).
+    pub implicit: ImplicitSettings,
     /// Dormand–Prince's relative and absolute tolerance.
     pub tolerance: f64,
 }
 
 impl Default for Settings {
-    /// Sparse Cholesky with converged Newton steps (the integrator's default
-    /// cap and tolerance) and Dormand–Prince's default relative tolerance
-    /// (10⁻⁶) as both of its tolerances.
+    /// The library's implicit settings ([`ImplicitSettings::default`]: the
+    /// automatic solver choice, which factorizes every system below
+    /// [`AutoSettings::trial_particles`](hooke_implicit::AutoSettings::trial_particles)
+    /// and measures the rest as a run would) and Dormand–Prince's default
+    /// relative tolerance (10⁻⁶) as both of its tolerances.
     fn default() -> Self {
         Self {
-            solver: LinearSolver::Cholesky,
-            minimizer: Minimizer::Newton,
-            newton_iterations: Implicit::NEWTON_ITERATIONS,
-            newton_tolerance: Implicit::NEWTON_TOLERANCE,
+            implicit: ImplicitSettings::default(),
             tolerance: DormandPrince::RTOL,
         }
     }
@@ -43,7 +38,7 @@ impl Settings {
     /// by the others.
     ///
     /// # Errors
-    /// [`ParameterError`] for a tolerance or solver setting out of range.
+    /// [`ParameterError`] for a tolerance or implicit setting out of range.
     pub fn build(
         &self,
         method: Method,
@@ -57,31 +52,19 @@ impl Settings {
                     atol: tolerance,
                 }
             }
-            IntegratorSpec::Implicit {
-                scheme,
-                weak_springs,
-                max_halvings,
-                strict,
-                error_control,
-                ..
-            } => IntegratorSpec::Implicit {
-                scheme,
-                solver: self.solver,
-                weak_springs,
-                minimizer: self.minimizer,
-                newton_iterations: self.newton_iterations,
-                newton_tolerance: self.newton_tolerance,
-                max_halvings,
-                strict,
-                error_control,
-            },
+            IntegratorSpec::Implicit(ImplicitSettings { scheme, .. }) => {
+                IntegratorSpec::Implicit(ImplicitSettings {
+                    scheme,
+                    ..self.implicit
+                })
+            }
             fixed @ (IntegratorSpec::Explicit(_) | IntegratorSpec::FastMassSpring { .. }) => fixed,
         };
         spec.build()
     }
 
-    /// The defaults, with the scene's own implicit or adaptive parameters
-    /// where it names an implicit or adaptive integrator.
+    /// The defaults, with the scene's own implicit settings or adaptive
+    /// tolerance where it names an implicit or adaptive integrator.
     #[must_use]
     pub fn from_scene(spec: &IntegratorSpec) -> Self {
         let defaults = Self::default();
@@ -91,17 +74,8 @@ impl Settings {
                 tolerance: rtol,
                 ..defaults
             },
-            IntegratorSpec::Implicit {
-                solver,
-                minimizer,
-                newton_iterations,
-                newton_tolerance,
-                ..
-            } => Self {
-                solver,
-                minimizer,
-                newton_iterations,
-                newton_tolerance,
+            IntegratorSpec::Implicit(implicit) => Self {
+                implicit,
                 ..defaults
             },
         }

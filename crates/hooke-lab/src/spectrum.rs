@@ -133,29 +133,19 @@ pub fn omega_max(system: &System) -> Spectrum {
 
 #[cfg(test)]
 mod tests {
-    use hooke_core::SystemBuilder;
-    use hooke_core::reference::Sheet;
+    use hooke_core::reference::{Chain, Sheet};
 
     use super::*;
 
+    /// `n` free masses `m` between two pinned ends, springs `k` along x:
+    /// the largest axial frequency is `2√(k/m) sin(nπ / 2(n + 1))`
+    /// ([`Chain::axial_frequencies`]), below the bound `2√(k/m)`.
     #[test]
     fn a_fixed_fixed_chain_matches_its_closed_form() {
-        // n free masses m between two pinned ends, springs k along x: the
-        // axial frequencies are 2√(k/m) sin(jπ / 2(n + 1)), j = 1..n.
         let (n, m, k) = (12, 0.5, 30.0);
-        let mut b = SystemBuilder::new();
-        for i in 0..n + 2 {
-            b.particle(m, [i as f64 * 0.1, 0.0, 0.0]);
-        }
-        b.pin(0).pin(n + 1);
-        for i in 0..=n {
-            b.spring(i, i + 1, k);
-        }
-        let system = b.build().unwrap();
-        let spectrum = omega_max(&system);
-        let expected = 2.0
-            * (k / m).sqrt()
-            * (n as f64 * std::f64::consts::PI / (2.0 * (n as f64 + 1.0))).sin();
+        let chain = Chain::fixed_fixed(n + 2, m, k, 0.1);
+        let spectrum = omega_max(&chain.system().unwrap());
+        let expected = chain.axial_frequencies().unwrap()[n - 1];
         assert!(
             (spectrum.omega_max - expected).abs() < 1e-6 * expected,
             "{} against {expected}",

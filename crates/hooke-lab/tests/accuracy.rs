@@ -165,7 +165,7 @@ fn step_variants_approach_the_converged_step_as_they_converge() {
     options.dts = vec![scene.timing.dt];
     options.duration = 1.0;
     options.repeat = 1;
-    options.settings.solver = LinearSolver::Cholesky;
+    options.settings.implicit.solver = LinearSolver::Cholesky;
     options.variants = vec![
         StepVariant::Newton(1e-9),
         StepVariant::Newton(1e-2),

@@ -2,21 +2,9 @@
 
 use hooke_core::{Integrator, ParameterError};
 use hooke_explicit::{DormandPrince, ExplicitMethod};
-use hooke_implicit::{
-    ErrorControl, FastMassSpring, Implicit, LinearSolver, Minimizer, Scheme, WeakSprings,
-};
+use hooke_implicit::{FastMassSpring, Implicit, ImplicitSettings, Scheme};
 
 use crate::Method;
-
-/// `names` quoted and listed for a message: `"a", "b" or "c"`.
-pub(crate) fn quoted_list<'a>(names: impl IntoIterator<Item = &'a str>) -> String {
-    let quoted: Vec<String> = names.into_iter().map(|n| format!("\"{n}\"")).collect();
-    match quoted.split_last() {
-        Some((last, [])) => last.clone(),
-        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
-        None => String::new(),
-    }
-}
 
 /// Which integrator a scene runs, with its parameters: a [`Method`] of
 /// the one list and what it needs to be built.
@@ -31,30 +19,9 @@ pub enum IntegratorSpec {
         /// Absolute tolerance.
         atol: f64,
     },
-    /// Backward Euler or BDF2.
-    Implicit {
-        /// The scheme.
-        scheme: Scheme,
-        /// The linear solver, with its settings.
-        solver: LinearSolver,
-        /// Where weak springs go in the matrix a step factorizes (`None`:
-        /// each minimiser's default, see `Implicit::with_weak_springs`).
-        weak_springs: Option<WeakSprings>,
-        /// How each step's incremental potential is minimised: Newton's
-        /// method, L-BFGS, or Baraff & Witkin's linearised step.
-        minimizer: Minimizer,
-        /// Cap on Newton iterations per (sub)step.
-        newton_iterations: usize,
-        /// Relative Newton tolerance `ε` (see `hooke_implicit::Implicit`).
-        newton_tolerance: f64,
-        /// Halvings a rejected step may take: its floor is `dt / 2^max_halvings`.
-        max_halvings: u32,
-        /// Whether a step accepted unconverged at the floor, or a linear
-        /// solve stopped at its cap, is an error instead of a warning.
-        strict: bool,
-        /// Error-controlled variable substeps, or fixed ones (`None`).
-        error_control: Option<ErrorControl>,
-    },
+    /// Backward Euler or BDF2 (the settings' scheme), with every setting
+    /// of the implicit step.
+    Implicit(ImplicitSettings),
     /// Liu et al.'s fast mass-spring method (`hooke_implicit::FastMassSpring`).
     FastMassSpring {
         /// Local/global iterations per step.
@@ -96,36 +63,22 @@ impl IntegratorSpec {
         match *self {
             Self::Explicit(explicit) => Method::Explicit(explicit),
             Self::Adaptive { .. } => Method::DormandPrince,
-            Self::Implicit {
-                scheme: Scheme::BackwardEuler,
-                ..
-            } => Method::BackwardEuler,
-            Self::Implicit {
-                scheme: Scheme::Bdf2,
-                ..
-            } => Method::Bdf2,
+            Self::Implicit(settings) => match settings.scheme {
+                Scheme::BackwardEuler => Method::BackwardEuler,
+                Scheme::Bdf2 => Method::Bdf2,
+            },
             Self::FastMassSpring { .. } => Method::FastMassSpring,
         }
     }
 
-    /// `scheme` with the automatic solver choice and converged Newton steps
-    /// at the integrator's default cap and tolerance
-    /// ([`Implicit::NEWTON_ITERATIONS`], [`Implicit::NEWTON_TOLERANCE`]),
-    /// rejected steps halved at most [`Implicit::MAX_HALVINGS`] times,
-    /// not strict, fixed substeps.
+    /// `scheme` with the default [`ImplicitSettings`]: the automatic
+    /// solver choice and converged Newton steps.
     #[must_use]
     pub fn implicit(scheme: Scheme) -> Self {
-        Self::Implicit {
+        Self::Implicit(ImplicitSettings {
             scheme,
-            solver: LinearSolver::Auto,
-            weak_springs: None,
-            minimizer: Minimizer::Newton,
-            newton_iterations: Implicit::NEWTON_ITERATIONS,
-            newton_tolerance: Implicit::NEWTON_TOLERANCE,
-            max_halvings: Implicit::MAX_HALVINGS,
-            strict: false,
-            error_control: None,
-        }
+            ..ImplicitSettings::default()
+        })
     }
 
     /// Backward Euler with the automatic solver choice and converged Newton
@@ -151,29 +104,7 @@ impl IntegratorSpec {
         Ok(match *self {
             Self::Explicit(explicit) => explicit.build(),
             Self::Adaptive { rtol, atol } => Box::new(DormandPrince::new(rtol, atol)?),
-            Self::Implicit {
-                scheme,
-                solver,
-                weak_springs,
-                minimizer,
-                newton_iterations,
-                newton_tolerance,
-                max_halvings,
-                strict,
-                error_control,
-            } => {
-                let implicit = Implicit::new(scheme)
-                    .with_solver(solver)
-                    .with_weak_springs(weak_springs)
-                    .with_newton(newton_iterations, newton_tolerance)?
-                    .with_max_halvings(max_halvings)
-                    .strict(strict);
-                let implicit = match error_control {
-                    Some(control) => implicit.with_error_control(control),
-                    None => implicit,
-                };
-                Box::new(implicit.with_minimizer(minimizer))
-            }
+            Self::Implicit(settings) => Box::new(Implicit::with_settings(settings)?),
             Self::FastMassSpring { iterations } => Box::new(FastMassSpring::new(iterations)?),
         })
     }

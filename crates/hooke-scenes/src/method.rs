@@ -5,7 +5,9 @@
 use std::f64::consts::SQRT_2;
 use std::fmt;
 
+use hooke_core::Named;
 use hooke_explicit::{DormandPrince, ExplicitMethod};
+use hooke_implicit::Scheme;
 use serde::{Deserialize, Deserializer, Serialize, Serializer, de};
 
 /// An integrator of hooke: one of the ten fixed-step explicit methods,
@@ -61,14 +63,15 @@ impl Method {
 
     /// The name scene files, reports and the command line use, which the
     /// integrator's `name()` returns too, e.g. `"rk4"`, `"dormand-prince"`,
-    /// `"backward-euler"`.
+    /// `"backward-euler"` (the implicit schemes by their table,
+    /// [`Scheme`]'s [`Named::TABLE`]).
     #[must_use]
-    pub const fn name(self) -> &'static str {
+    pub fn name(self) -> &'static str {
         match self {
             Self::Explicit(method) => method.name(),
             Self::DormandPrince => DormandPrince::NAME,
-            Self::BackwardEuler => "backward-euler",
-            Self::Bdf2 => "bdf2",
+            Self::BackwardEuler => Scheme::BackwardEuler.name(),
+            Self::Bdf2 => Scheme::Bdf2.name(),
             Self::FastMassSpring => hooke_implicit::FastMassSpring::NAME,
         }
     }

@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 use hooke_core::{Path as Motion, Shape, Vec3};
 use hooke_explicit::DormandPrince;
 use hooke_implicit::{
-    ErrorControl, FastMassSpring, Implicit, LinearSolver, Minimizer, PcgSettings, Scheme,
+    ErrorControl, FastMassSpring, Implicit, ImplicitSettings, LinearSolver, Minimizer, PcgSettings,
+    Scheme,
 };
 use hooke_scenes::file::{self, ErrorKind};
 use hooke_scenes::{IntegratorSpec, builtin};
@@ -262,17 +263,12 @@ fn a_cloth_file_says_what_the_scene_holds() {
     );
     assert_eq!(
         scene.integrator,
-        IntegratorSpec::Implicit {
+        IntegratorSpec::Implicit(ImplicitSettings {
             scheme: Scheme::Bdf2,
-            minimizer: Minimizer::Newton,
             solver: LinearSolver::Pcg(PcgSettings::new(1e-7, 300).unwrap()),
-            weak_springs: None,
             newton_iterations: 4,
-            newton_tolerance: Implicit::NEWTON_TOLERANCE,
-            max_halvings: Implicit::MAX_HALVINGS,
-            strict: false,
-            error_control: None,
-        }
+            ..ImplicitSettings::default()
+        })
     );
     let pinned: Vec<usize> = scene.system.pinned().collect();
     assert_eq!(pinned, [0, 39, 1599]);

@@ -1,10 +1,15 @@
 //! The `[integrator]` table of scene files: every method by its name with
-//! the integrators' own defaults.
+//! the integrators' own defaults, and every implicit setting by its key.
 
 mod common;
 
+use hooke_core::reference::Sheet;
+use hooke_core::{CompressedSprings, Integrator, Named};
 use hooke_explicit::DormandPrince;
-use hooke_implicit::{ErrorControl, LinearSolver, Minimizer, PcgSettings, WeakSprings};
+use hooke_implicit::{
+    AmgRenewal, ErrorControl, Implicit, ImplicitSettings, LinearSolver, Minimizer, PcgSettings,
+    Scheme, Supernodes, WeakSprings,
+};
 use hooke_scenes::{IntegratorSpec, Method};
 
 use common::{CLOTH, parse};
@@ -37,10 +42,10 @@ fn every_method_is_named_as_its_integrator_is_with_the_integrators_defaults() {
     );
     let text = format!("[integrator]\nsolver = \"pcg\"\n{CLOTH}");
     let defaults = PcgSettings::default();
-    let IntegratorSpec::Implicit { solver, .. } = parse(&text).unwrap().integrator else {
+    let IntegratorSpec::Implicit(settings) = parse(&text).unwrap().integrator else {
         panic!("backward Euler is the default method");
     };
-    assert_eq!(solver, LinearSolver::Pcg(defaults));
+    assert_eq!(settings.solver, LinearSolver::Pcg(defaults));
 }
 
 #[test]
@@ -56,7 +61,7 @@ fn an_unknown_method_is_an_error_listing_every_method() {
 fn solvers_and_the_fast_mass_spring_iterations_are_read_and_checked() {
     let spec = |text: &str| parse(&format!("[integrator]\n{text}\n{CLOTH}"));
     let solver = |text: &str| match spec(text).unwrap().integrator {
-        IntegratorSpec::Implicit { solver, .. } => solver,
+        IntegratorSpec::Implicit(settings) => settings.solver,
         other => panic!("{other:?}"),
     };
     assert_eq!(solver(""), LinearSolver::Auto);
@@ -70,13 +75,13 @@ fn solvers_and_the_fast_mass_spring_iterations_are_read_and_checked() {
         LinearSolver::LaggedCholesky(_)
     ));
     let message = spec("solver = \"multigrid\"").unwrap_err().to_string();
-    for name in LinearSolver::NAMES {
+    for name in LinearSolver::names() {
         assert!(message.contains(&format!("\"{name}\"")), "{message}");
     }
     // Every name of the table reads back as its solver, PCG's keys going
     // to the iterative ones and refused by the others.
     let pcg = PcgSettings::new(1e-7, 30).unwrap();
-    for name in LinearSolver::NAMES {
+    for name in LinearSolver::names() {
         let keys = format!("solver = \"{name}\"\ntolerance = 1e-7\nmax_iterations = 30");
         match LinearSolver::from_name(name) {
             Some(expected) if expected.pcg().is_some() => {
@@ -112,20 +117,12 @@ fn rtol_atol_strict_and_max_halvings_control_the_implicit_substeps() {
     let spec = |keys: &str| {
         let text = format!("[integrator]\nmethod = \"bdf2\"\n{keys}\n{CLOTH}");
         match parse(&text).unwrap().integrator {
-            IntegratorSpec::Implicit {
-                max_halvings,
-                strict,
-                error_control,
-                ..
-            } => (max_halvings, strict, error_control),
+            IntegratorSpec::Implicit(s) => (s.max_halvings, s.strict, s.error_control),
             other => panic!("bdf2 is implicit, got {other:?}"),
         }
     };
     let defaults = spec("");
-    assert_eq!(
-        defaults,
-        (hooke_implicit::Implicit::MAX_HALVINGS, false, None)
-    );
+    assert_eq!(defaults, (Implicit::MAX_HALVINGS, false, None));
     assert_eq!(spec("max_halvings = 3\nstrict = true"), (3, true, None));
     let controlled = |keys| spec(keys).2.map(|c| (c.relative(), c.absolute()));
     assert_eq!(
@@ -208,10 +205,10 @@ fn the_step_key_names_the_minimiser_and_history_its_memory() {
     ] {
         let text = format!("[integrator]\n{keys}\n{CLOTH}");
         let spec = parse(&text).unwrap().integrator;
-        let IntegratorSpec::Implicit { minimizer, .. } = spec else {
+        let IntegratorSpec::Implicit(settings) = spec else {
             panic!("{keys}: {spec:?}");
         };
-        assert_eq!(minimizer, expected, "{keys}");
+        assert_eq!(settings.minimizer, expected, "{keys}");
     }
 }
 
@@ -220,7 +217,7 @@ fn weak_springs_are_read_for_the_factorization_and_checked() {
     let weak = |text: &str| match parse(&format!("[integrator]\n{text}\n{CLOTH}"))
         .map(|scene| scene.integrator)
     {
-        Ok(IntegratorSpec::Implicit { weak_springs, .. }) => Ok(weak_springs),
+        Ok(IntegratorSpec::Implicit(settings)) => Ok(settings.weak_springs),
         Ok(other) => panic!("{other:?}"),
         Err(e) => Err(e.to_string()),
     };
@@ -242,7 +239,7 @@ fn weak_springs_are_read_for_the_factorization_and_checked() {
     // A name it does not know: the error names the key and lists both.
     let message = weak("weak_springs = \"bent\"").unwrap_err();
     assert!(message.contains("integrator.weak_springs"), "{message}");
-    for name in WeakSprings::NAMES {
+    for name in WeakSprings::names() {
         assert!(message.contains(&format!("\"{name}\"")), "{message}");
     }
     // Only a factorization has weak springs to route in Newton's matrix.
@@ -251,4 +248,144 @@ fn weak_springs_are_read_for_the_factorization_and_checked() {
     // Nor does an explicit method take it.
     let message = weak("method = \"rk4\"\nweak_springs = \"routed\"").unwrap_err();
     assert!(message.contains("weak_springs"), "{message}");
+}
+
+/// Two tables that between them set every implicit setting away from its
+/// default, with the settings each must give.
+fn every_setting() -> [(&'static str, ImplicitSettings); 2] {
+    let d = ImplicitSettings::default();
+    [
+        (
+            r#"method = "bdf2"
+            solver = "cholesky"
+            weak_springs = "routed"
+            supernodes = "faer"
+            step = "linearized"
+            newton_iterations = 7
+            newton_tolerance = 1e-6
+            max_halvings = 3
+            strict = true
+            compressed_springs = "exact"
+            rtol = 1e-2
+            atol = 0.0"#,
+            ImplicitSettings {
+                scheme: Scheme::Bdf2,
+                solver: LinearSolver::Cholesky,
+                minimizer: Minimizer::Linearized,
+                newton_iterations: 7,
+                newton_tolerance: 1e-6,
+                weak_springs: Some(WeakSprings::Routed),
+                supernodes: Supernodes::Faer,
+                max_halvings: 3,
+                strict: true,
+                compressed: CompressedSprings::Exact,
+                error_control: Some(ErrorControl::new(1e-2, 0.0).unwrap()),
+                ..d
+            },
+        ),
+        (
+            r#"solver = "amg"
+            tolerance = 1e-4
+            max_iterations = 50
+            inexact_newton = false
+            amg_renewal = "smoother-only""#,
+            ImplicitSettings {
+                solver: LinearSolver::Amg(PcgSettings::new(1e-4, 50).unwrap()),
+                inexact_newton: false,
+                amg_renewal: AmgRenewal::SmootherOnly,
+                ..d
+            },
+        ),
+    ]
+}
+
+/// A scene file sets every field of the implicit settings, the spec
+/// carries them to the integrator it builds (which steps as one built
+/// from the same settings does, and unlike one with the defaults), and the
+/// settings written as keys read back from a scene file as themselves.
+#[test]
+fn a_scene_file_sets_every_implicit_setting_and_the_spec_carries_it() {
+    let system = Sheet::new(5).system().unwrap();
+    let run = |integrator: &mut dyn Integrator| {
+        let mut state = system.initial_state();
+        for _ in 0..3 {
+            integrator.step(&system, &mut state, 0.02).unwrap();
+        }
+        state.positions().to_vec()
+    };
+    for (keys, expected) in every_setting() {
+        let spec = parse(&format!("[integrator]\n{keys}\n{CLOTH}"))
+            .unwrap()
+            .integrator;
+        assert_eq!(spec, IntegratorSpec::Implicit(expected), "{keys}");
+        let built = run(&mut *spec.build().unwrap());
+        assert_eq!(built, run(&mut Implicit::with_settings(expected).unwrap()));
+        assert_ne!(built, run(&mut Implicit::new(expected.scheme)));
+        // Written as keys, the settings are a table that reads back as them.
+        let table: Vec<String> = expected
+            .keys()
+            .into_iter()
+            .map(|(key, value)| match key {
+                "scheme" => format!("method = {value}"),
+                _ => format!("{key} = {value}"),
+            })
+            .collect();
+        let text = format!("[integrator]\n{}\n{CLOTH}", table.join("\n"));
+        assert_eq!(parse(&text).unwrap().integrator, spec, "{text}");
+    }
+}
+
+/// The keys added with the settings type are read by their tables' names,
+/// and each is refused where it does not apply, naming the key.
+#[test]
+fn the_factorization_multigrid_and_newton_keys_are_read_and_checked() {
+    let settings = |text: &str| match parse(&format!("[integrator]\n{text}\n{CLOTH}")) {
+        Ok(scene) => match scene.integrator {
+            IntegratorSpec::Implicit(settings) => Ok(settings),
+            other => panic!("{other:?}"),
+        },
+        Err(e) => Err(e.to_string()),
+    };
+    for name in Supernodes::names() {
+        let read = settings(&format!("supernodes = \"{name}\"")).unwrap();
+        assert_eq!(read.supernodes.name(), name);
+    }
+    for name in CompressedSprings::names() {
+        let read = settings(&format!("compressed_springs = \"{name}\"")).unwrap();
+        assert_eq!(read.compressed.name(), name);
+    }
+    for name in AmgRenewal::names() {
+        let read = settings(&format!("solver = \"amg\"\namg_renewal = \"{name}\"")).unwrap();
+        assert_eq!(read.amg_renewal.name(), name);
+    }
+    for (text, key) in [
+        ("supernodes = \"simplicial\"", "integrator.supernodes"),
+        (
+            "solver = \"pcg\"\nsupernodes = \"faer\"",
+            "integrator.supernodes",
+        ),
+        (
+            "solver = \"cholesky\"\namg_renewal = \"smoother-only\"",
+            "integrator.amg_renewal",
+        ),
+        (
+            "step = \"linearized\"\ninexact_newton = false",
+            "integrator.inexact_newton",
+        ),
+        (
+            "step = \"quasi-newton\"\ncompressed_springs = \"exact\"",
+            "integrator.compressed_springs",
+        ),
+        (
+            "method = \"rk4\"\ninexact_newton = true",
+            "integrator.inexact_newton",
+        ),
+        (
+            "method = \"fast-mass-spring\"\nsupernodes = \"faer\"",
+            "integrator.supernodes",
+        ),
+    ] {
+        let message = settings(text).unwrap_err();
+        assert!(message.contains(key), "{text}: {message}");
+    }
 }

@@ -5,6 +5,7 @@
 //! | --- | --- | --- |
 //! | `frame_00000.ply`, `frame_00001.ply`, ... | [`write_frame`] | binary little-endian PLY, one file per written frame ([`frame_file_name`]) |
 //! | `preview.png` | [`Renderer::render`] + [`save_png`] | an RGBA PNG picture of one frame |
+//! | `animation.usda` | [`write_usda`] | the frames as one USD animation: each body a mesh (or curves, for ropes) with its points sampled at every frame, the obstacles as their shapes (see [`usd`]) |
 //! | `animation.gif` | [`AnimationWriter`] | a looping GIF of the rendered frames, at most [`MAX_GIF_WIDTH`] pixels wide and about [`MAX_GIF_FRAMES`] frames long |
 //! | `stability.png`/`.svg`, `work_precision.png`/`.svg`, ... | [`plot`] | the lab's figures: PNG for viewing, SVG (vector) for papers |
 //!
@@ -106,6 +107,7 @@ mod shadow;
 mod shape;
 mod style;
 mod tessellate;
+pub mod usd;
 
 pub use animation::{AnimationWriter, EncodedFrame, MAX_GIF_FRAMES, MAX_GIF_WIDTH};
 pub use backdrop::Backdrop;
@@ -121,3 +123,4 @@ pub use scene_mesh::{obstacles_at, scene_mesh};
 pub use shape::{check_shape, shape_bounds};
 pub use style::{Rgb, Style};
 pub use tiny_skia::Pixmap;
+pub use usd::{AnimationFrame, write_usda};

@@ -1,12 +1,13 @@
 //! What a picture needs of an obstacle's [`Shape`] beyond the model: the
 //! box that holds it and a check that it can be drawn.
 
-use hooke_core::{Shape, Vec3};
+use hooke_core::Shape;
 
 use crate::bounds::Bounds;
 use crate::error::OutputError;
 
-/// The box holding `shape`, or `None` for a plane.
+/// The box holding `shape`, or `None` for a plane
+/// ([`Shape::bounds`]).
 ///
 /// ```
 /// use hooke_core::{Shape, Vec3};
@@ -16,82 +17,28 @@ use crate::error::OutputError;
 /// ```
 #[must_use]
 pub fn shape_bounds(shape: &Shape) -> Option<Bounds> {
-    match *shape {
-        Shape::Sphere { center, radius } => {
-            let r = Vec3::repeat(radius);
-            Some(Bounds::new(center - r, center + r))
-        }
-        Shape::Plane { .. } => None,
-        Shape::Box {
-            center,
-            half_extents,
-            rotation,
-        } => {
-            let reach = rotation.abs() * half_extents;
-            Some(Bounds::new(center - reach, center + reach))
-        }
-        Shape::Capsule { a, b, radius } => {
-            let r = Vec3::repeat(radius);
-            Some(Bounds::new(a - r, a + r).union(Bounds::new(b - r, b + r)))
-        }
-    }
+    shape.bounds().map(|(lo, hi)| Bounds::new(lo, hi))
 }
 
-/// Checks that `shape` can be drawn; `index` is its place in the obstacle
-/// list, for the error.
+/// Checks that `shape` can be drawn — that its parameters are valid
+/// ([`Shape::problem`]); `index` is its place in the obstacle list, for
+/// the error.
 ///
 /// # Errors
 ///
 /// [`OutputError::InvalidShape`] for non-finite data, a radius or half
-/// extent that is not positive, or a zero plane normal.
+/// extent that is not positive, a zero plane normal or a box turned by a
+/// matrix that is not a rotation.
 pub fn check_shape(shape: &Shape, index: usize) -> Result<(), OutputError> {
-    let fail = |reason| Err(OutputError::InvalidShape { index, reason });
-    let finite = |v: &Vec3| v.iter().all(|c| c.is_finite());
-    let positive = |r: f64| r.is_finite() && r > 0.0;
-    match shape {
-        Shape::Sphere { center, radius } => {
-            if !finite(center) {
-                return fail("sphere centre is not finite");
-            }
-            if !positive(*radius) {
-                return fail("sphere radius must be positive and finite");
-            }
-        }
-        Shape::Plane { point, normal } => {
-            if !finite(point) || !finite(normal) {
-                return fail("plane point or normal is not finite");
-            }
-            if normal.norm() <= f64::MIN_POSITIVE {
-                return fail("plane normal is zero");
-            }
-        }
-        Shape::Box {
-            center,
-            half_extents,
-            rotation,
-        } => {
-            if !finite(center) || !rotation.iter().all(|c| c.is_finite()) {
-                return fail("box centre or rotation is not finite");
-            }
-            if !half_extents.iter().all(|&h| positive(h)) {
-                return fail("box half extents must be positive and finite");
-            }
-        }
-        Shape::Capsule { a, b, radius } => {
-            if !finite(a) || !finite(b) {
-                return fail("capsule axis is not finite");
-            }
-            if !positive(*radius) {
-                return fail("capsule radius must be positive and finite");
-            }
-        }
-    }
-    Ok(())
+    shape.problem().map_or(Ok(()), |reason| {
+        Err(OutputError::InvalidShape { index, reason })
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use approx::assert_relative_eq;
+    use hooke_core::Vec3;
     use nalgebra::Rotation3;
 
     use super::*;

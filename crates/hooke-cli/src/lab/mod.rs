@@ -11,6 +11,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
+use hooke_core::Named;
 use hooke_implicit::{LinearSolver, PcgSettings};
 use hooke_lab::{LabError, Method, Range, Shard};
 use hooke_scenes::Scene;
@@ -71,7 +72,7 @@ pub(crate) struct SceneArgs {
     scale_stiffness: Option<f64>,
     /// The implicit methods' linear solver, any value of the scene file's
     /// `solver` key (default: the scene's, if it runs an implicit method,
-    /// else cholesky).
+    /// else the library's, auto).
     #[arg(long, value_name = "SOLVER", value_parser = solver_parser())]
     solver: Option<LinearSolver>,
     /// The relative residual at which the --solver stops, when it is a PCG
@@ -89,10 +90,10 @@ pub(crate) struct SceneArgs {
 }
 
 /// `--solver`'s values: the names of the scene file's `solver` key, from
-/// its table ([`LinearSolver::NAMES`]), each read as that solver at PCG's
+/// its table ([`Named::TABLE`]), each read as that solver at PCG's
 /// default settings.
 fn solver_parser() -> impl TypedValueParser<Value = LinearSolver> {
-    PossibleValuesParser::new(LinearSolver::NAMES).try_map(|name| {
+    PossibleValuesParser::new(LinearSolver::names()).try_map(|name| {
         LinearSolver::from_name(&name).ok_or_else(|| format!("no solver \"{name}\""))
     })
 }
@@ -110,15 +111,17 @@ impl SceneArgs {
     }
 
     /// The lab's method settings for `scene`, with `--solver`,
-    /// `--pcg-tolerance`, `--newton` and `--linearized` applied.
+    /// `--pcg-tolerance`, `--newton` and `--linearized` set on its
+    /// implicit settings.
     ///
     /// # Errors
     /// [`CliError::PcgTolerance`] for `--pcg-tolerance` with a solver that
     /// is not a PCG iteration, [`LabError::Parameter`] for one out of range.
     fn settings(&self, scene: &Scene) -> Result<hooke_lab::Settings, CliError> {
         let mut settings = hooke_lab::Settings::from_scene(&scene.integrator);
+        let implicit = &mut settings.implicit;
         if let Some(solver) = self.solver {
-            settings.solver = match self.pcg_tolerance {
+            implicit.solver = match self.pcg_tolerance {
                 None => solver,
                 Some(tolerance) if solver.pcg().is_some() => {
                     let pcg = PcgSettings::new(tolerance, PcgSettings::default().max_iterations())
@@ -133,10 +136,10 @@ impl SceneArgs {
             };
         }
         if let Some(n) = self.newton {
-            settings.newton_iterations = n;
+            implicit.newton_iterations = n;
         }
         if self.linearized {
-            settings.minimizer = hooke_implicit::Minimizer::Linearized;
+            implicit.minimizer = hooke_implicit::Minimizer::Linearized;
         }
         Ok(settings)
     }
@@ -205,17 +208,17 @@ mod tests {
     #[test]
     fn solver_names_the_scene_files_solver_and_pcg_tolerance_sets_its_tolerance() {
         let pcg = PcgSettings::default();
-        let solver = |args: &[&str]| settings(args).unwrap().unwrap().solver;
+        let solver = |args: &[&str]| settings(args).unwrap().unwrap().implicit.solver;
         // The oscillator runs velocity Verlet: the implicit methods take
-        // the lab's default solver.
-        assert_eq!(solver(&[]), LinearSolver::Cholesky);
-        for name in LinearSolver::NAMES {
+        // the library's default solver.
+        assert_eq!(solver(&[]), LinearSolver::default());
+        for name in LinearSolver::names() {
             let expected = LinearSolver::from_name(name).unwrap();
             assert_eq!(solver(&["--solver", name]), expected);
             let tightened = settings(&["--solver", name, "--pcg-tolerance", "1e-9"]).unwrap();
             match expected.pcg() {
                 Some(_) => assert_eq!(
-                    tightened.unwrap().solver,
+                    tightened.unwrap().implicit.solver,
                     expected.with_pcg(PcgSettings::new(1e-9, pcg.max_iterations()).unwrap())
                 ),
                 None => assert!(

@@ -141,7 +141,7 @@ pub trait Term: fmt::Debug + Send + Sync + TermClone {
     /// The work external agents did on the particles through the term over
     /// the step from `step` to `(x, v)`, J: scripted pins moving a spring's
     /// end, obstacles moving under contact, moving air.
-    fn work(&self, _system: &System, _step: &StepStart<'_>, _x: &[Vec3], _v: &[Vec3]) -> f64 {
+    fn work(&mut self, _system: &System, _step: &StepStart<'_>, _x: &[Vec3], _v: &[Vec3]) -> f64 {
         0.0
     }
 

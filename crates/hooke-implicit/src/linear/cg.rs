@@ -112,13 +112,18 @@ impl PcgSettings {
     }
 }
 
+impl PcgSettings {
+    /// The default: relative residual `1e-6`, at most 1000 iterations.
+    pub const DEFAULT: Self = Self {
+        tolerance: 1e-6,
+        max_iterations: 1000,
+    };
+}
+
 impl Default for PcgSettings {
-    /// Relative residual `1e-6`, at most 1000 iterations.
+    /// [`PcgSettings::DEFAULT`].
     fn default() -> Self {
-        Self {
-            tolerance: 1e-6,
-            max_iterations: 1000,
-        }
+        Self::DEFAULT
     }
 }
 

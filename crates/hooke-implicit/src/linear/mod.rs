@@ -6,13 +6,9 @@ pub mod amg;
 pub mod cg;
 pub(crate) mod cholesky;
 pub(crate) mod filter;
+pub(crate) mod laplacian;
 pub(crate) mod matrix;
+pub(crate) mod neighbours;
 pub(crate) mod pattern;
 pub(crate) mod solver;
 pub(crate) mod vector;
-
-/// The symmetric 3 × 3 block of the matrices ([`hooke_core::SymBlock`]),
-/// where the contact module imports it from.
-pub(crate) mod block {
-    pub(crate) use hooke_core::SymBlock;
-}

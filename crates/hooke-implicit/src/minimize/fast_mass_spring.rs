@@ -3,12 +3,13 @@
 //! local/global iterations on a constant, prefactored matrix.
 
 use hooke_core::{
-    Integrator, Parameter, ParameterError, State, StepBuffers, StepError, StepReport, System, Vec3,
+    Integrator, Named, Parameter, ParameterError, State, StepBuffers, StepError, StepReport,
+    System, Vec3,
 };
 
 use crate::WeakSprings;
+use crate::linear::laplacian::{Inverse, Laplacian};
 use crate::linear::solver::LinearSolver;
-use crate::minimize::laplacian::{Inverse, Laplacian};
 
 /// Backward Euler for springs as Liu et al. (2013) solve it.
 ///

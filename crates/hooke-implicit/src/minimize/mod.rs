@@ -6,7 +6,6 @@
 
 pub(crate) mod contact;
 pub(crate) mod fast_mass_spring;
-pub(crate) mod laplacian;
 pub(crate) mod line_search;
 pub(crate) mod newton;
 pub(crate) mod quasi_newton;

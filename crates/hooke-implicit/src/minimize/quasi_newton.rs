@@ -53,11 +53,11 @@
 //! Hessian (an upper bound of the block's largest eigenvalue, exact for a
 //! particle against one obstacle) — and is factorized afresh.
 
-use hooke_core::{StepError, SymBlock, System, Vec3};
+use hooke_core::{Named, StepError, SymBlock, System, Vec3};
 
 use crate::WeakSprings;
+use crate::linear::laplacian::{Inverse, Laplacian};
 use crate::linear::vector::{dot, for_each_row};
-use crate::minimize::laplacian::{Inverse, Laplacian};
 
 /// The quasi-Newton state of an integrator: `H₀`'s factor and the curvature
 /// pairs of the current (sub)step.

@@ -7,7 +7,6 @@ use hooke_core::{
     At, CompressedSprings, State, StepError, StepReport, StepStart, System, Vec3, When,
 };
 
-use crate::linear::cholesky::WeakSprings;
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::topology;
 use crate::linear::vector::for_each_row;
@@ -129,7 +128,7 @@ impl Implicit {
             Minimizer::QuasiNewton { history, carried } => {
                 let inverse = (
                     self.settings.solver.initial_hessian_inverse(),
-                    self.settings.weak_springs.unwrap_or(WeakSprings::Routed),
+                    self.settings.weak_springs_used(),
                 );
                 self.quasi.begin(
                     system,
@@ -146,10 +145,7 @@ impl Implicit {
             solver,
             (
                 self.settings.amg_renewal,
-                (
-                    self.settings.weak_springs.unwrap_or(WeakSprings::Kept),
-                    self.settings.supernodes,
-                ),
+                (self.settings.weak_springs_used(), self.settings.supernodes),
             ),
             (system, terms.pattern()),
         )?;

@@ -1,7 +1,7 @@
-//! [`Implicit`]'s builders and accessors: each sets or reads one of its
-//! [`Settings`](super::implicit::Settings).
+//! [`Implicit`]'s builders and accessors: each sets or reads fields of its
+//! [`ImplicitSettings`].
 
-use hooke_core::{CompressedSprings, Integrator, Parameter, ParameterError};
+use hooke_core::{CompressedSprings, ParameterError};
 
 use crate::linear::cholesky::{Supernodes, WeakSprings};
 use crate::linear::solver::{AmgRenewal, LinearSolver};
@@ -9,6 +9,7 @@ use crate::step::comparison::Comparison;
 use crate::step::error_control::ErrorControl;
 use crate::step::implicit::Implicit;
 use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::settings::ImplicitSettings;
 
 impl Implicit {
     /// Uses `solver` for the linear systems.
@@ -105,30 +106,19 @@ impl Implicit {
     ///
     /// # Errors
     /// [`ParameterError`] for zero iterations or a tolerance that is not
-    /// positive and finite.
+    /// positive and finite ([`ImplicitSettings::validate`]).
     pub fn with_newton(
         mut self,
         max_iterations: usize,
         tolerance: f64,
     ) -> Result<Self, ParameterError> {
-        if max_iterations == 0 {
-            return Err(ParameterError::new(
-                self.name(),
-                Parameter::NewtonIterations,
-                0.0,
-                "at least 1",
-            ));
-        }
-        if !(tolerance.is_finite() && tolerance > 0.0) {
-            return Err(ParameterError::new(
-                self.name(),
-                Parameter::NewtonTolerance,
-                tolerance,
-                "positive and finite",
-            ));
-        }
-        self.settings.newton_iterations = max_iterations;
-        self.settings.newton_tolerance = tolerance;
+        let settings = ImplicitSettings {
+            newton_iterations: max_iterations,
+            newton_tolerance: tolerance,
+            ..self.settings
+        };
+        settings.validate()?;
+        self.settings = settings;
         Ok(self)
     }
 
@@ -231,6 +221,12 @@ impl Implicit {
     #[must_use]
     pub fn scheme(&self) -> Scheme {
         self.settings.scheme
+    }
+
+    /// The settings the integrator steps with.
+    #[must_use]
+    pub fn settings(&self) -> &ImplicitSettings {
+        &self.settings
     }
 
     /// The linear solver whose topology a step uses; none for the

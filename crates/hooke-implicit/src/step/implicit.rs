@@ -1,17 +1,15 @@
 //! [`Implicit`]: backward Euler and BDF2 on the assembled system.
 
-use hooke_core::{CompressedSprings, History};
+use hooke_core::{History, ParameterError};
 
-use crate::linear::cholesky::{Supernodes, WeakSprings};
 use crate::linear::solver::topology::Topology;
-use crate::linear::solver::{AmgRenewal, LinearSolver};
 use crate::minimize::quasi_newton::QuasiNewton;
 use crate::minimize::terms::Terms;
 use crate::step::comparison::Comparison;
 use crate::step::conditioning::LongestStep;
-use crate::step::error_control::ErrorControl;
 use crate::step::pins::Pins;
-use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::scheme::Scheme;
+use crate::step::settings::ImplicitSettings;
 use crate::step::work::Work;
 
 /// An implicit integrator on the assembled mass-spring system.
@@ -113,7 +111,7 @@ use crate::step::work::Work;
 ///
 /// # The quasi-Newton step
 ///
-/// With [`Minimizer::QuasiNewton`] each iterate's direction is L-BFGS's,
+/// With [`Minimizer::QuasiNewton`](crate::Minimizer::QuasiNewton) each iterate's direction is L-BFGS's,
 /// `δ = −H ∇Φ`, from the last `m` curvature pairs around the constant
 /// initial Hessian `H₀ = M + βh (γI + C₀) + β²h² L` (the `quasi_newton`
 /// module); the iteration starts at `vₙ` (with the pins' prescribed
@@ -172,7 +170,9 @@ use crate::step::work::Work;
 /// ```
 #[derive(Debug)]
 pub struct Implicit {
-    pub(crate) settings: Settings,
+    /// What the integrator was built with; everything else is run-time
+    /// state.
+    pub(crate) settings: ImplicitSettings,
     /// The steps before, for BDF2 and the error estimates.
     pub(crate) history: History,
     /// The substep size to try first: the last accepted one, doubled.
@@ -181,7 +181,7 @@ pub struct Implicit {
     /// continued from it (for BDF2's error estimate).
     pub(crate) earlier: Option<f64>,
     pub(crate) topology: Option<Topology>,
-    /// [`LinearSolver::Auto`]'s comparison on whole steps, while it lasts.
+    /// [`LinearSolver::Auto`](crate::LinearSolver::Auto)'s comparison on whole steps, while it lasts.
     pub(crate) comparison: Comparison,
     /// The longest substep the conditioning allows.
     pub(crate) longest: LongestStep,
@@ -192,54 +192,29 @@ pub struct Implicit {
     pub(crate) work: Work,
 }
 
-/// What [`Implicit`]'s builders set: the scheme, the minimiser and its
-/// stopping rule, the linear solver, the substeps' limits and the error
-/// control. Everything else in [`Implicit`] is run-time state.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Settings {
-    pub(crate) scheme: Scheme,
-    pub(crate) solver: LinearSolver,
-    pub(crate) minimizer: Minimizer,
-    pub(crate) newton_iterations: usize,
-    pub(crate) newton_tolerance: f64,
-    pub(crate) inexact_newton: bool,
-    pub(crate) amg_renewal: AmgRenewal,
-    /// Where weak springs go; `None` for each minimiser's default:
-    /// [`WeakSprings::Kept`] in Newton's factor,
-    /// [`WeakSprings::Routed`] in the quasi-Newton step's `H₀`.
-    pub(crate) weak_springs: Option<WeakSprings>,
-    /// Which numeric factorization a Cholesky factor of the step's matrix
-    /// runs.
-    pub(crate) supernodes: Supernodes,
-    pub(crate) max_halvings: u32,
-    pub(crate) strict: bool,
-    pub(crate) compressed: CompressedSprings,
-    pub(crate) error_control: Option<ErrorControl>,
-}
-
 impl Implicit {
-    /// Backward Euler with the automatic solver choice
-    /// ([`LinearSolver::Auto`]: sparse Cholesky on small systems, otherwise
-    /// whichever solver a timed trial finds fastest), converged Newton steps (at most
-    /// [`Implicit::NEWTON_ITERATIONS`] solves, tolerance
-    /// [`Implicit::NEWTON_TOLERANCE`]), step rejection down to `h/2¹⁰`,
-    /// clamped compressed springs, fixed substeps, non-strict.
+    /// Backward Euler with the default [`ImplicitSettings`]: the automatic
+    /// solver choice ([`LinearSolver::Auto`](crate::LinearSolver::Auto): sparse Cholesky on small
+    /// systems, otherwise whichever solver a timed trial finds fastest),
+    /// converged Newton steps, step rejection, fixed substeps.
     #[must_use]
     pub fn backward_euler() -> Self {
         Self::new(Scheme::BackwardEuler)
     }
 
-    /// BDF2 with the same defaults as [`Implicit::backward_euler`].
+    /// BDF2 with the default [`ImplicitSettings`].
     #[must_use]
     pub fn bdf2() -> Self {
         Self::new(Scheme::Bdf2)
     }
 
-    /// The default cap on Newton's linear solves per (sub)step. Stiff
+    /// The default cap on Newton's linear solves per (sub)step
+    /// ([`ImplicitSettings::newton_iterations`]). Stiff
     /// cloth swinging through large angles needs tens of them: at 10⁸ N/m
     /// and 0.1 s steps a 24×24 cloth takes 50–100.
     pub const NEWTON_ITERATIONS: usize = 100;
-    /// The default relative Newton tolerance `ε` (a relative error of the
+    /// The default relative Newton tolerance `ε`
+    /// ([`ImplicitSettings::newton_tolerance`]; a relative error of the
     /// velocities in the mass norm; `Φ` then lies about `ε²` times twice the
     /// kinetic-energy scale above its minimum), chosen from the
     /// `work_precision` bench (`benches/README.md`): the loosest Newton
@@ -262,7 +237,8 @@ impl Implicit {
     /// from two pins took 118 Newton iterations to reach `10⁻⁶` against 8
     /// to reach `10⁻⁴`.
     pub const NEWTON_TOLERANCE: f64 = 5e-3;
-    /// The default number of halvings a step may be cut by.
+    /// The default number of halvings a step may be cut by
+    /// ([`ImplicitSettings::max_halvings`]).
     pub const MAX_HALVINGS: u32 = 10;
     /// The largest condition number `κ(h) = 1 + βhζ + β²h²ω²` of a step's
     /// matrix relative to the mass matrix (`ω²`, `ζ`: Gershgorin bounds of
@@ -271,25 +247,43 @@ impl Implicit {
     /// soft modes' inertia to about 2 %.
     pub const MAX_CONDITION: f64 = 1e14;
 
-    /// An integrator of the given scheme with the defaults.
+    /// An integrator of the given scheme with the default
+    /// [`ImplicitSettings`].
     #[must_use]
     pub fn new(scheme: Scheme) -> Self {
+        Self::built(ImplicitSettings {
+            scheme,
+            ..ImplicitSettings::default()
+        })
+    }
+
+    /// An integrator with `settings`.
+    ///
+    /// ```
+    /// use hooke_implicit::{Implicit, ImplicitSettings, Minimizer};
+    /// let settings = ImplicitSettings {
+    ///     minimizer: Minimizer::quasi_newton(),
+    ///     newton_tolerance: 1e-3,
+    ///     ..ImplicitSettings::default()
+    /// };
+    /// let lbfgs = Implicit::with_settings(settings)?;
+    /// assert_eq!(lbfgs.minimizer(), Minimizer::quasi_newton());
+    /// # Ok::<(), hooke_core::ParameterError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ParameterError`] naming the setting out of range
+    /// ([`ImplicitSettings::validate`]).
+    pub fn with_settings(settings: ImplicitSettings) -> Result<Self, ParameterError> {
+        settings.validate()?;
+        Ok(Self::built(settings))
+    }
+
+    /// An integrator with `settings`, which are valid, and nothing built
+    /// or measured yet.
+    fn built(settings: ImplicitSettings) -> Self {
         Self {
-            settings: Settings {
-                scheme,
-                solver: LinearSolver::default(),
-                minimizer: Minimizer::Newton,
-                newton_iterations: Self::NEWTON_ITERATIONS,
-                newton_tolerance: Self::NEWTON_TOLERANCE,
-                inexact_newton: true,
-                amg_renewal: AmgRenewal::default(),
-                weak_springs: None,
-                supernodes: Supernodes::default(),
-                max_halvings: Self::MAX_HALVINGS,
-                strict: false,
-                compressed: CompressedSprings::Clamped,
-                error_control: None,
-            },
+            settings,
             history: History::default(),
             substep: f64::INFINITY,
             earlier: None,

@@ -11,5 +11,6 @@ pub mod error_control;
 pub(crate) mod implicit;
 pub(crate) mod pins;
 pub(crate) mod scheme;
+pub(crate) mod settings;
 pub(crate) mod substeps;
 pub(crate) mod work;

@@ -1,14 +1,17 @@
 //! The time discretisation ([`Scheme`]) and the minimiser of each step's
 //! potential ([`Minimizer`]).
 
+use hooke_core::Named;
+
 /// The time discretisation. Both are implicit, A-stable and L-stable: stiff
 /// modes are damped, never amplified, at any step size.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Scheme {
     /// Backward Euler, first order:
     /// `xₙ₊₁ = xₙ + h vₙ₊₁`, `vₙ₊₁ = vₙ + h M⁻¹ f(xₙ₊₁, vₙ₊₁)`.
     /// On the undamped oscillator one step multiplies the amplitude by
-    /// `1/√(1 + (hω)²)`.
+    /// `1/√(1 + (hω)²)`. The default.
+    #[default]
     BackwardEuler,
     /// The second-order backward differentiation formula:
     /// `xₙ₊₁ = (4xₙ − xₙ₋₁)/3 + (2/3)h vₙ₊₁`,
@@ -19,6 +22,16 @@ pub enum Scheme {
     /// Responsive Cloth*, SIGGRAPH 2002; Hairer & Wanner, *Solving Ordinary
     /// Differential Equations II*, §V.1).
     Bdf2,
+}
+
+impl Named for Scheme {
+    /// `"backward-euler"` and `"bdf2"`: the integrator's name
+    /// ([`Integrator::name`](hooke_core::Integrator::name)), which scene
+    /// files give as their `method`.
+    const TABLE: &'static [(Self, &'static str)] = &[
+        (Self::BackwardEuler, "backward-euler"),
+        (Self::Bdf2, "bdf2"),
+    ];
 }
 
 /// How a step minimises its incremental potential `Φ` (see [`Implicit`](crate::Implicit)).
@@ -80,21 +93,21 @@ impl Minimizer {
 
     /// L-BFGS with the default history and carried pairs.
     #[must_use]
-    pub fn quasi_newton() -> Self {
+    pub const fn quasi_newton() -> Self {
         Self::QuasiNewton {
             history: Self::HISTORY,
             carried: Self::CARRIED,
         }
     }
+}
 
-    /// The name scene files and reports use: `"newton"`, `"quasi-newton"`
-    /// or `"linearized"`.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Newton => "newton",
-            Self::QuasiNewton { .. } => "quasi-newton",
-            Self::Linearized => "linearized",
-        }
-    }
+impl Named for Minimizer {
+    /// `"newton"`, `"quasi-newton"` (with the default history and carried
+    /// pairs) and `"linearized"`, as scene files (`step`) and reports spell
+    /// them.
+    const TABLE: &'static [(Self, &'static str)] = &[
+        (Self::Newton, "newton"),
+        (Self::quasi_newton(), "quasi-newton"),
+        (Self::Linearized, "linearized"),
+    ];
 }

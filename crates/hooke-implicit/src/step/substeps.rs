@@ -3,13 +3,12 @@
 
 use std::time::Instant;
 
-use hooke_core::{Integrator, State, StepError, StepReport, System, Vec3, check_step};
+use hooke_core::{Integrator, Named, State, StepError, StepReport, System, Vec3, check_step};
 
 use crate::minimize::terms::Terms;
 use crate::step::attempt::Outcome;
 use crate::step::error_control::step_factor;
 use crate::step::implicit::Implicit;
-use crate::step::scheme::Scheme;
 
 impl Integrator for Implicit {
     fn step(
@@ -120,9 +119,6 @@ impl Integrator for Implicit {
     }
 
     fn name(&self) -> &'static str {
-        match self.settings.scheme {
-            Scheme::BackwardEuler => "backward-euler",
-            Scheme::Bdf2 => "bdf2",
-        }
+        self.settings.scheme.name()
     }
 }

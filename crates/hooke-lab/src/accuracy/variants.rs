@@ -26,7 +26,7 @@ use std::ops::ControlFlow;
 use std::str::FromStr;
 
 use hooke_core::{Integrator, ObserveFn, ParameterError, State, StepInfo, System};
-use hooke_implicit::{FastMassSpring, LinearSolver, Minimizer};
+use hooke_implicit::{FastMassSpring, ImplicitSettings, LinearSolver, Minimizer};
 use hooke_scenes::IntegratorSpec;
 use serde::{Deserialize, Serialize};
 
@@ -79,14 +79,17 @@ impl StepVariant {
         let (minimizer, newton_tolerance) = match self {
             Self::Newton(tolerance) => (Minimizer::Newton, tolerance),
             Self::QuasiNewton(tolerance) => (Minimizer::quasi_newton(), tolerance),
-            Self::Linearized => (Minimizer::Linearized, settings.newton_tolerance),
+            Self::Linearized => (Minimizer::Linearized, settings.implicit.newton_tolerance),
             Self::FastMassSpring(iterations) => {
                 return IntegratorSpec::FastMassSpring { iterations }.build();
             }
         };
         Settings {
-            minimizer,
-            newton_tolerance,
+            implicit: ImplicitSettings {
+                minimizer,
+                newton_tolerance,
+                ..settings.implicit
+            },
             ..*settings
         }
         .build(Method::BackwardEuler, None)
@@ -272,10 +275,15 @@ pub(super) fn measure_variants(
     progress: &mut dyn FnMut(),
 ) -> Result<(Vec<ConvergedRun>, Vec<VariantRun>), LabError> {
     let interval = options.duration / options.frames as f64;
+    // Cholesky rather than `auto`: the run every variant is measured
+    // against solves each step exactly, whatever a timed trial would pick.
     let converged_settings = Settings {
-        solver: LinearSolver::Cholesky,
-        minimizer: Minimizer::Newton,
-        newton_tolerance: CONVERGED_TOLERANCE,
+        implicit: ImplicitSettings {
+            solver: LinearSolver::Cholesky,
+            minimizer: Minimizer::Newton,
+            newton_tolerance: CONVERGED_TOLERANCE,
+            ..options.settings.implicit
+        },
         ..options.settings
     };
     let end_error = |checkpoints: &Checkpoints| match (checkpoints.last(), reference.last()) {

@@ -3,14 +3,13 @@
 
 use std::ops::Range;
 
-use hooke_core::{Parameter, ParameterError};
-use hooke_implicit::{ErrorControl, LinearSolver, Minimizer, PcgSettings, Scheme, WeakSprings};
+use hooke_core::{Named, Parameter, ParameterError, quoted_list};
+use hooke_implicit::{ImplicitSettings, KeyError, KeyProblem, KeyValue, LinearSolver};
 use toml::Spanned;
 
 use super::error::{ErrorKind, SceneFileError, Source};
 use super::schema::{IntegratorTable, Simulation};
 use super::values::positive;
-use crate::integrator::quoted_list;
 use crate::{IntegratorSpec, Method, Timing};
 
 /// Defaults of `[simulation]`: 5 s at 1/60 s steps, 60 frames per second.
@@ -58,10 +57,12 @@ pub(crate) fn timing(
     Ok(timing)
 }
 
-/// The integrator: backward Euler with the automatic solver choice and converged Newton steps
+/// The integrator: backward Euler with the default [`ImplicitSettings`]
 /// unless the table says otherwise; every default is the integrator's own
-/// ([`IntegratorSpec::new`], [`PcgSettings::default`]). Keys that do not apply
-/// to the chosen method or solver are errors.
+/// ([`IntegratorSpec::new`]). The implicit methods' keys set their
+/// [`ImplicitSettings`] through [`ImplicitSettings::from_keys`], which
+/// rejects the keys that do not apply to the chosen solver or step; keys
+/// that do not apply to the chosen method are errors here.
 pub(crate) fn integrator(
     src: &Source<'_>,
     table: Option<&Spanned<IntegratorTable>>,
@@ -83,34 +84,21 @@ pub(crate) fn integrator(
             format!("`{key}` only with {applies_to}"),
         )
     };
-    let implicit_only = [
-        ("solver", t.solver.as_ref().map(Spanned::span)),
-        ("weak_springs", t.weak_springs.as_ref().map(Spanned::span)),
-        ("step", t.step.as_ref().map(Spanned::span)),
-        ("history", t.history.as_ref().map(Spanned::span)),
-        ("carried_pairs", t.carried_pairs.as_ref().map(Spanned::span)),
-        (
-            "newton_iterations",
-            t.newton_iterations.as_ref().map(Spanned::span),
-        ),
-        (
-            "newton_tolerance",
-            t.newton_tolerance.as_ref().map(Spanned::span),
-        ),
-        ("max_halvings", t.max_halvings.as_ref().map(Spanned::span)),
-        ("strict", t.strict.as_ref().map(Spanned::span)),
-    ];
-    let pcg_only = [
-        ("tolerance", t.tolerance.as_ref().map(Spanned::span)),
-        (
-            "max_iterations",
-            t.max_iterations.as_ref().map(Spanned::span),
-        ),
-    ];
-    let tolerances = [
-        ("rtol", t.rtol.as_ref().map(Spanned::span)),
-        ("atol", t.atol.as_ref().map(Spanned::span)),
-    ];
+    let settings_keys = settings_keys(t);
+    let given = |keys: &[&str]| -> Vec<(&str, Option<Range<usize>>)> {
+        settings_keys
+            .iter()
+            .filter(|(key, ..)| keys.contains(key))
+            .map(|(key, _, span)| (*key, Some(span.clone())))
+            .collect()
+    };
+    let pcg_only = given(&["tolerance", "max_iterations"]);
+    let tolerances = given(&["rtol", "atol"]);
+    let implicit_only: Vec<_> = settings_keys
+        .iter()
+        .filter(|(key, ..)| !["tolerance", "max_iterations", "rtol", "atol"].contains(key))
+        .map(|(key, _, span)| (*key, Some(span.clone())))
+        .collect();
     let fast_only = [("iterations", t.iterations.as_ref().map(Spanned::span))];
     let iterative_solvers = format!("solver {}", quoted_list(LinearSolver::iterative_names()));
     let fast_name = format!("method \"{}\"", Method::FastMassSpring);
@@ -140,18 +128,13 @@ pub(crate) fn integrator(
         Method::DormandPrince
     );
     let spec = match IntegratorSpec::new(chosen) {
-        IntegratorSpec::Implicit {
-            scheme,
-            newton_iterations,
-            newton_tolerance,
-            max_halvings,
-            strict,
-            ..
-        } => {
+        IntegratorSpec::Implicit(defaults) => {
             reject(&fast_only, &fast_name)?;
-            let reject_pcg = || reject(&pcg_only, &iterative_solvers);
-            let defaults = (newton_iterations, newton_tolerance, max_halvings, strict);
-            implicit(src, table, scheme, defaults, reject_pcg)?
+            let scheme = ("scheme", KeyValue::Name(defaults.scheme.name()));
+            let keys = settings_keys.iter().map(|&(key, value, _)| (key, value));
+            let settings = ImplicitSettings::from_keys(std::iter::once(scheme).chain(keys))
+                .map_err(|error| key_error(src, table, &settings_keys, error))?;
+            IntegratorSpec::Implicit(settings)
         }
         IntegratorSpec::Adaptive { rtol, atol } => {
             reject(&implicit_only, &implicit_names)?;
@@ -183,172 +166,100 @@ pub(crate) fn integrator(
     Ok(spec)
 }
 
-/// The keys of an implicit method's table over the defaults `(newton
-/// iterations, newton tolerance, max halvings, strict)` of `scheme`;
-/// `reject_pcg` fails if the table has PCG's keys, for a solver that is
-/// not iterative. `rtol` or `atol` turn error control on, the one not
-/// given at its default ([`ErrorControl::RELATIVE`],
-/// [`ErrorControl::ABSOLUTE`]).
-fn implicit(
+/// A value and its place in the file.
+type Entry<'t> = (&'static str, KeyValue<'t>, Range<usize>);
+
+/// The keys of the table that name [`ImplicitSettings`]' fields (every key
+/// but `method` and `iterations`), with their values and places, in the
+/// order the table's schema lists them.
+fn settings_keys(t: &IntegratorTable) -> Vec<Entry<'_>> {
+    fn entry<'t, T: AsKeyValue>(
+        key: &'static str,
+        value: Option<&'t Spanned<T>>,
+    ) -> Option<Entry<'t>> {
+        value.map(|v| (key, v.get_ref().as_key_value(), v.span()))
+    }
+    [
+        entry("solver", t.solver.as_ref()),
+        entry("weak_springs", t.weak_springs.as_ref()),
+        entry("supernodes", t.supernodes.as_ref()),
+        entry("amg_renewal", t.amg_renewal.as_ref()),
+        entry("step", t.step.as_ref()),
+        entry("history", t.history.as_ref()),
+        entry("carried_pairs", t.carried_pairs.as_ref()),
+        entry("tolerance", t.tolerance.as_ref()),
+        entry("max_iterations", t.max_iterations.as_ref()),
+        entry("newton_iterations", t.newton_iterations.as_ref()),
+        entry("newton_tolerance", t.newton_tolerance.as_ref()),
+        entry("inexact_newton", t.inexact_newton.as_ref()),
+        entry("max_halvings", t.max_halvings.as_ref()),
+        entry("strict", t.strict.as_ref()),
+        entry("compressed_springs", t.compressed_springs.as_ref()),
+        entry("rtol", t.rtol.as_ref()),
+        entry("atol", t.atol.as_ref()),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
+/// A value of the table as the implicit settings' keys take it.
+trait AsKeyValue {
+    fn as_key_value(&self) -> KeyValue<'_>;
+}
+
+impl AsKeyValue for String {
+    fn as_key_value(&self) -> KeyValue<'_> {
+        KeyValue::Name(self)
+    }
+}
+
+impl AsKeyValue for usize {
+    fn as_key_value(&self) -> KeyValue<'_> {
+        KeyValue::Count(*self as u64)
+    }
+}
+
+impl AsKeyValue for u32 {
+    fn as_key_value(&self) -> KeyValue<'_> {
+        KeyValue::Count(u64::from(*self))
+    }
+}
+
+impl AsKeyValue for f64 {
+    fn as_key_value(&self) -> KeyValue<'_> {
+        KeyValue::Number(*self)
+    }
+}
+
+impl AsKeyValue for bool {
+    fn as_key_value(&self) -> KeyValue<'_> {
+        KeyValue::Switch(*self)
+    }
+}
+
+/// `error`, a key of the implicit settings that cannot set them, at the
+/// key (the table itself for a key the file does not give).
+fn key_error(
     src: &Source<'_>,
     table: &Spanned<IntegratorTable>,
-    scheme: Scheme,
-    (newton_iterations, newton_tolerance, max_halvings, strict): (usize, f64, u32, bool),
-    reject_pcg: impl FnOnce() -> Result<(), SceneFileError>,
-) -> Result<IntegratorSpec, SceneFileError> {
-    let t = table.get_ref();
-    let defaults = PcgSettings::default();
-    let tolerance = t
-        .tolerance
-        .as_ref()
-        .map_or(defaults.tolerance(), |v| *v.get_ref());
-    let max_iterations = t
-        .max_iterations
-        .as_ref()
-        .map_or(defaults.max_iterations(), |v| *v.get_ref());
-    let solver = match &t.solver {
-        None => LinearSolver::Auto,
-        Some(name) => named(
-            src,
-            ("solver", name),
-            LinearSolver::from_name,
-            &LinearSolver::NAMES,
-        )?,
-    };
-    if solver.pcg().is_none() {
-        reject_pcg()?;
+    keys: &[Entry<'_>],
+    error: KeyError,
+) -> SceneFileError {
+    let span = keys
+        .iter()
+        .find(|(key, ..)| *key == error.key)
+        .map_or(table.span(), |(_, _, span)| span.clone());
+    let key = format!("integrator.{}", error.key);
+    match error.problem {
+        KeyProblem::Invalid { value, expected } => src.invalid(span, key, value, expected),
+        KeyProblem::OutOfRange(error) => src.error(Some(span), key, ErrorKind::Integrator(error)),
     }
-    let history = t
-        .history
-        .as_ref()
-        .map_or(Minimizer::HISTORY, |v| *v.get_ref());
-    let carried = match &t.carried_pairs {
-        None => Minimizer::CARRIED.min(history),
-        Some(c) if *c.get_ref() > history => {
-            return Err(src.invalid(
-                c.span(),
-                "integrator.carried_pairs",
-                format!("{} with history = {history}", c.get_ref()),
-                "at most `history`",
-            ));
-        }
-        Some(c) => *c.get_ref(),
-    };
-    // The minimisers by their own names; "converged" is Newton's old name.
-    let minimizers = [
-        Minimizer::Newton,
-        Minimizer::QuasiNewton { history, carried },
-        Minimizer::Linearized,
-    ];
-    let minimizer = match t.step.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
-        None | Some(("converged", _)) => Minimizer::Newton,
-        Some((name, span)) => minimizers
-            .into_iter()
-            .find(|m| m.name() == name)
-            .ok_or_else(|| {
-                src.invalid(
-                    span,
-                    "integrator.step",
-                    format!("\"{name}\""),
-                    format!(
-                        "{} (or \"converged\" for \"newton\")",
-                        quoted_list(minimizers.iter().map(|m| m.name()))
-                    ),
-                )
-            })?,
-    };
-    // Newton's and the linearised step's matrix is factorized only by
-    // `auto` or `cholesky`; the quasi-Newton step's `H₀` by any solver.
-    let weak_springs = match &t.weak_springs {
-        None => None,
-        Some(name)
-            if !matches!(minimizer, Minimizer::QuasiNewton { .. })
-                && !matches!(solver, LinearSolver::Auto | LinearSolver::Cholesky) =>
-        {
-            return Err(src.invalid(
-                name.span(),
-                "integrator.weak_springs",
-                format!("`weak_springs` with solver \"{}\"", solver.name()),
-                "`weak_springs` only with solver \"auto\" or \"cholesky\", \
-                 or with step = \"quasi-newton\"",
-            ));
-        }
-        Some(name) => Some(named(
-            src,
-            ("weak_springs", name),
-            WeakSprings::from_name,
-            &WeakSprings::NAMES,
-        )?),
-    };
-    if !matches!(minimizer, Minimizer::QuasiNewton { .. }) {
-        let keys = [
-            ("history", t.history.as_ref().map(Spanned::span)),
-            ("carried_pairs", t.carried_pairs.as_ref().map(Spanned::span)),
-        ];
-        if let Some((key, Some(span))) = keys.into_iter().find(|(_, span)| span.is_some()) {
-            return Err(src.invalid(
-                span,
-                format!("integrator.{key}"),
-                format!("`{key}` without step = \"quasi-newton\""),
-                format!("`{key}` only with step = \"quasi-newton\""),
-            ));
-        }
-    }
-    let value = |key: Option<&Spanned<f64>>| key.map(|v| *v.get_ref());
-    let error_control = match (value(t.rtol.as_ref()), value(t.atol.as_ref())) {
-        (None, None) => None,
-        (rtol, atol) => Some(
-            ErrorControl::new(
-                rtol.unwrap_or(ErrorControl::RELATIVE),
-                atol.unwrap_or(ErrorControl::ABSOLUTE),
-            )
-            .map_err(|e| out_of_range(src, table, e))?,
-        ),
-    };
-    // PCG's settings, checked after the other keys (`auto` and `cholesky`,
-    // which take none, keep them at the defaults and ignore them).
-    let pcg =
-        PcgSettings::new(tolerance, max_iterations).map_err(|e| out_of_range(src, table, e))?;
-    let solver = solver.with_pcg(pcg);
-    Ok(IntegratorSpec::Implicit {
-        scheme,
-        solver,
-        weak_springs,
-        minimizer,
-        newton_iterations: t
-            .newton_iterations
-            .as_ref()
-            .map_or(newton_iterations, |v| *v.get_ref()),
-        newton_tolerance: value(t.newton_tolerance.as_ref()).unwrap_or(newton_tolerance),
-        max_halvings: t
-            .max_halvings
-            .as_ref()
-            .map_or(max_halvings, |v| *v.get_ref()),
-        strict: t.strict.as_ref().map_or(strict, |v| *v.get_ref()),
-        error_control,
-    })
 }
 
-/// The setting the value `name` of the key `integrator.key` names, found
-/// by `find`; otherwise an error at it listing the names there are.
-fn named<T>(
-    src: &Source<'_>,
-    (key, name): (&str, &Spanned<String>),
-    find: impl Fn(&str) -> Option<T>,
-    names: &[&str],
-) -> Result<T, SceneFileError> {
-    find(name.get_ref()).ok_or_else(|| {
-        src.invalid(
-            name.span(),
-            format!("integrator.{key}"),
-            format!("\"{}\"", name.get_ref()),
-            quoted_list(names.iter().copied()),
-        )
-    })
-}
-
-/// `error`, a setting of the table's integrator out of range, at the key
-/// that set it (the table itself for a setting scene files do not name).
+/// `error`, a setting of the table's explicit, adaptive or fast
+/// mass-spring integrator out of range, at the key that set it (the table
+/// itself for a setting scene files do not name).
 fn out_of_range(
     src: &Source<'_>,
     table: &Spanned<IntegratorTable>,
@@ -356,32 +267,10 @@ fn out_of_range(
 ) -> SceneFileError {
     let t = table.get_ref();
     let (key, span) = match error.parameter {
-        Parameter::Tolerance => ("tolerance", t.tolerance.as_ref().map(Spanned::span)),
-        Parameter::MaxIterations => (
-            "max_iterations",
-            t.max_iterations.as_ref().map(Spanned::span),
-        ),
-        Parameter::NewtonIterations => (
-            "newton_iterations",
-            t.newton_iterations.as_ref().map(Spanned::span),
-        ),
-        Parameter::NewtonTolerance => (
-            "newton_tolerance",
-            t.newton_tolerance.as_ref().map(Spanned::span),
-        ),
-        Parameter::Rtol | Parameter::RelativeTolerance => {
-            ("rtol", t.rtol.as_ref().map(Spanned::span))
-        }
-        Parameter::Atol | Parameter::AbsoluteTolerance => {
-            ("atol", t.atol.as_ref().map(Spanned::span))
-        }
+        Parameter::Rtol => ("rtol", t.rtol.as_ref().map(Spanned::span)),
+        Parameter::Atol => ("atol", t.atol.as_ref().map(Spanned::span)),
         Parameter::Iterations => ("iterations", t.iterations.as_ref().map(Spanned::span)),
-        other @ (Parameter::Strength
-        | Parameter::Filter
-        | Parameter::SmootherDegree
-        | Parameter::FineDegree
-        | Parameter::CoarseUnknowns
-        | Parameter::CellFactor) => (other.name(), None),
+        other => (other.name(), None),
     };
     src.error(
         Some(span.unwrap_or(table.span())),

@@ -8,60 +8,8 @@ use super::bsr::{Block, Bsr, for_each_block, for_each_row_slice, zero};
 use super::prolongation::MODES;
 use crate::linear::filter::Filter;
 use crate::linear::matrix::BlockMatrix;
-use crate::linear::pattern::Pattern;
+use crate::linear::neighbours::Neighbours;
 use crate::linear::vector::{PARALLEL_MIN_PARTICLES, for_each_row};
-
-/// Each particle's neighbours through a spring, in increasing order, with
-/// the spring's slot: the block rows of `A` without the diagonal.
-#[derive(Debug, Default)]
-pub(crate) struct Neighbours {
-    ptr: Vec<usize>,
-    entries: Vec<(u32, u32)>,
-}
-
-impl Neighbours {
-    /// The neighbours in `pattern`.
-    pub(crate) fn new(pattern: &Pattern) -> Self {
-        let n = pattern.rows();
-        let mut ptr = vec![0usize; n + 1];
-        for i in 0..n {
-            for t in pattern.upper(i) {
-                ptr[i + 1] += 1;
-                ptr[pattern.column(t) + 1] += 1;
-            }
-        }
-        for i in 0..n {
-            ptr[i + 1] += ptr[i];
-        }
-        let mut next = ptr.clone();
-        let mut entries = vec![(0, 0); ptr[n]];
-        // Rows in increasing order: a particle's lower neighbours arrive
-        // first, in order, then its upper ones, in the pattern's order.
-        for i in 0..n {
-            for t in pattern.upper(i) {
-                let j = pattern.column(t);
-                entries[next[j]] = (i as u32, t as u32);
-                next[j] += 1;
-            }
-            for t in pattern.upper(i) {
-                entries[next[i]] = (pattern.column(t) as u32, t as u32);
-                next[i] += 1;
-            }
-        }
-        Self { ptr, entries }
-    }
-
-    /// The neighbours of `i` and the slots joining them.
-    #[inline]
-    pub(crate) fn of(&self, i: usize) -> &[(u32, u32)] {
-        &self.entries[self.ptr[i]..self.ptr[i + 1]]
-    }
-
-    /// The bytes held.
-    pub(crate) fn bytes(&self) -> usize {
-        8 * self.ptr.len() + 8 * self.entries.len()
-    }
-}
 
 /// `S_i M S_j` for filters `S_i`, `S_j`.
 fn sandwich(m: Mat3, left: Filter, right: Filter) -> Mat3 {
@@ -114,9 +62,9 @@ pub(crate) fn apply(
 pub(crate) fn graph(a: &BlockMatrix, filters: &[Filter], neighbours: &Neighbours) -> Graph {
     let n = a.rows();
     let mut g = Graph {
-        ptr: neighbours.ptr.clone(),
-        adj: neighbours.entries.iter().map(|&(j, _)| j).collect(),
-        weight: Vec::with_capacity(neighbours.entries.len()),
+        ptr: neighbours.offsets().to_vec(),
+        adj: neighbours.entries().iter().map(|&(j, _)| j).collect(),
+        weight: Vec::with_capacity(neighbours.entries().len()),
         diagonal: (0..n)
             .map(|i| diagonal_block(a, filters, i).norm())
             .collect(),
@@ -164,7 +112,7 @@ pub(crate) fn filtered_diagonal(
 ) -> Vec<f64> {
     (0..a.rows())
         .flat_map(|i| {
-            let start = neighbours.ptr[i];
+            let start = neighbours.offsets()[i];
             let mut d = diagonal_block(a, filters, i);
             for (k, &(j, slot)) in neighbours.of(i).iter().enumerate() {
                 if !strong[start + k] {
@@ -185,7 +133,7 @@ pub(crate) fn product_pattern(
     p: &Bsr<3, MODES>,
     strong: Option<&[bool]>,
 ) -> Bsr<3, MODES> {
-    let n = neighbours.ptr.len() - 1;
+    let n = neighbours.particles();
     let mut marker = vec![usize::MAX; p.cols];
     let mut out = Bsr {
         cols: p.cols,
@@ -194,7 +142,7 @@ pub(crate) fn product_pattern(
     };
     out.row_ptr.push(0);
     for i in 0..n {
-        let start = neighbours.ptr[i];
+        let start = neighbours.offsets()[i];
         let first = out.col_idx.len();
         let others = neighbours
             .of(i)
@@ -250,7 +198,7 @@ pub(crate) fn multiply_into(
                 super::bsr::add_product(&mut values[position[col as usize] as usize], &block, pb);
             }
         };
-        let start = neighbours.ptr[i];
+        let start = neighbours.offsets()[i];
         let mut diagonal = diagonal_block(a, filters, i);
         for (k, &(j, slot)) in neighbours.of(i).iter().enumerate() {
             let block = coupling_block(a, filters, i, j as usize, slot as usize);

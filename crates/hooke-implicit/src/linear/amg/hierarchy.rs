@@ -8,13 +8,14 @@ use hooke_core::Vec3;
 use super::aggregation::{aggregate, strong_mask};
 use super::bsr::{Bsr, for_each_block, zero};
 use super::coarse::ScalarCholesky;
-use super::fine::{self, Neighbours};
+use super::fine;
 use super::level::{Coarsest, Level, Transfer, coarse_graph, smoothing_weight};
 use super::prolongation::{MODES, smooth, tentative};
 use super::{AmgError, AmgInfo, AmgSettings};
 use crate::linear::cg::Preconditioner;
 use crate::linear::filter::Filter;
 use crate::linear::matrix::BlockMatrix;
+use crate::linear::neighbours::Neighbours;
 use crate::linear::vector::{PARALLEL_MIN_PARTICLES, for_each_row};
 
 /// A smoothed-aggregation multigrid hierarchy for the filtered matrix

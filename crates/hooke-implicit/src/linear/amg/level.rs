@@ -7,12 +7,13 @@ use super::aggregation::Graph;
 use super::bsr::{Bsr, zero};
 use super::coarse::ScalarCholesky;
 use super::csr::Csr;
-use super::fine::{self, Neighbours};
+use super::fine;
 use super::prolongation::MODES;
 use super::smoother::{BlockInverse, Chebyshev, Sweep, largest_eigenvalue};
 use super::{AmgError, AmgSettings};
 use crate::linear::filter::Filter;
 use crate::linear::matrix::BlockMatrix;
+use crate::linear::neighbours::Neighbours;
 
 /// Iterations of the power method estimating `λ_max(D⁻¹Â)` from a
 /// pseudo-random start, when a hierarchy is built.

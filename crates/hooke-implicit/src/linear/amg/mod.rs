@@ -73,7 +73,7 @@ mod aggregation;
 mod bsr;
 pub(crate) mod coarse;
 pub(crate) mod csr;
-pub(crate) mod fine;
+mod fine;
 mod hierarchy;
 mod level;
 mod prolongation;

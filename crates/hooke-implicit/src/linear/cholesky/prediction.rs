@@ -6,7 +6,7 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::sparse::linalg::amd;
 
-use crate::linear::amg::fine::Neighbours;
+use crate::linear::neighbours::Neighbours;
 use crate::linear::pattern::Pattern;
 
 use super::Routes;
@@ -60,39 +60,26 @@ pub(crate) fn predicted_factor_entries(pattern: &Pattern, routes: &Routes) -> Op
 #[cfg(test)]
 mod tests {
     use hooke_core::SystemBuilder;
-    use hooke_core::reference::Sheet;
+    use hooke_core::reference::{Chain, Sheet};
 
     use super::*;
     use crate::linear::cholesky::SparseCholesky;
     use crate::linear::matrix::BlockMatrix;
-
-    fn pattern(build: impl Fn(&mut SystemBuilder)) -> Pattern {
-        let mut builder = SystemBuilder::new();
-        build(&mut builder);
-        Pattern::new(&builder.build().unwrap()).unwrap()
-    }
 
     /// Graphs whose fill is known: a chain and a star (its centre ordered
     /// last) fill nothing, so their factors have the graph's `n − 1` edges.
     #[test]
     fn predicted_factor_of_graphs_without_fill() {
         let n = 100;
-        let chain = pattern(|b| {
-            for i in 0..n {
-                b.particle(1.0, [i as f64, 0.0, 0.0]);
-            }
-            for i in 1..n {
-                b.spring(i - 1, i, 1.0);
-            }
-        });
-        let star = pattern(|b| {
-            b.particle(1.0, [0.0, 0.0, 0.0]);
-            for i in 1..n {
-                let angle = i as f64;
-                b.particle(1.0, [angle.cos(), angle.sin(), 0.0]);
-                b.spring(0, i, 1.0);
-            }
-        });
+        let chain = Pattern::new(&Chain::pendulum(n, 1.0, 1.0, 1.0).system().unwrap()).unwrap();
+        let mut b = SystemBuilder::new();
+        b.particle(1.0, [0.0, 0.0, 0.0]);
+        for i in 1..n {
+            let angle = i as f64;
+            b.particle(1.0, [angle.cos(), angle.sin(), 0.0]);
+            b.spring(0, i, 1.0);
+        }
+        let star = Pattern::new(&b.build().unwrap()).unwrap();
         for p in [chain, star] {
             let routes = Routes::default();
             assert_eq!(

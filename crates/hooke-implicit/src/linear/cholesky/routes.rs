@@ -38,8 +38,8 @@
 
 use hooke_core::{Mat3, System};
 
-use crate::linear::amg::fine::Neighbours;
 use crate::linear::matrix::BlockMatrix;
+use crate::linear::neighbours::Neighbours;
 use crate::linear::pattern::Pattern;
 
 /// Where weak springs go in the matrix a step factorizes (see the `routes`
@@ -77,33 +77,11 @@ pub enum WeakSprings {
     Routed,
 }
 
-impl WeakSprings {
-    /// Both settings as scene files spell them, in the order of
-    /// [`WeakSprings::name`].
-    pub const NAMES: [&'static str; 2] = ["kept", "routed"];
-
-    /// The setting's name: `"kept"` or `"routed"`.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        Self::NAMES[match self {
-            Self::Kept => 0,
-            Self::Routed => 1,
-        }]
-    }
-
-    /// The setting called `name` (see [`WeakSprings::NAMES`]).
-    ///
-    /// ```
-    /// use hooke_implicit::WeakSprings;
-    /// assert_eq!(WeakSprings::from_name("routed"), Some(WeakSprings::Routed));
-    /// assert_eq!(WeakSprings::from_name("bent"), None);
-    /// ```
-    #[must_use]
-    pub fn from_name(name: &str) -> Option<Self> {
-        [Self::Kept, Self::Routed]
-            .into_iter()
-            .find(|weak| weak.name() == name)
-    }
+impl hooke_core::Named for WeakSprings {
+    /// `"kept"` and `"routed"`, as scene files (`weak_springs`) and reports
+    /// spell them.
+    const TABLE: &'static [(Self, &'static str)] =
+        &[(Self::Kept, "kept"), (Self::Routed, "routed")];
 }
 
 /// A spring is routed only if the stiffness it adds to each leg,

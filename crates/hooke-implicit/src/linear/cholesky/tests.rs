@@ -1,11 +1,11 @@
 //! The factorization of a matrix with blocks outside its pattern.
 
-use hooke_core::SystemBuilder;
+use hooke_core::{Mat3, System, SystemBuilder, Vec3};
 
 use super::*;
-use crate::linear::filter::pin_filters;
+use crate::linear::filter::{Filter, pin_filters};
 use crate::linear::pattern::Pattern;
-use hooke_core::{SymBlock, System};
+use hooke_core::SymBlock;
 
 /// A chain of four unit masses, springs joining 0–1, 1–2 and 2–3 only,
 /// with a contact-like term `c g gᵀ`, `g = (n, n, n, n)`, joining all

@@ -9,8 +9,9 @@ pub(crate) mod renewal;
 pub(crate) mod solve;
 pub(crate) mod topology;
 
+use hooke_core::Named;
+
 use crate::linear::cg::PcgSettings;
-use crate::minimize::laplacian::Inverse;
 
 pub use self::auto_settings::AutoSettings;
 pub use self::renewal::AmgRenewal;
@@ -74,68 +75,9 @@ pub enum LinearSolver {
 }
 
 impl LinearSolver {
-    /// How the quasi-Newton step applies `H₀⁻¹` under this setting:
-    /// multigrid for [`LinearSolver::Amg`], the factor or multigrid by the
-    /// factor's size for [`LinearSolver::Auto`], the factor otherwise.
-    pub(crate) fn initial_hessian_inverse(self) -> Inverse {
-        match self {
-            Self::Amg(_) => Inverse::Multigrid,
-            Self::Auto => Inverse::Auto,
-            Self::Pcg(_) | Self::Cholesky | Self::LaggedCholesky(_) => Inverse::Factor,
-        }
-    }
-
     /// Iterations of a [`LinearSolver::LaggedCholesky`] solve beyond which
     /// the next solve factorizes again.
     pub const LAGGED_REFACTOR_ITERATIONS: usize = 10;
-
-    /// Every solver's name as the scene files and reports spell it, in the
-    /// order of [`LinearSolver::all`]: the one table of the names that
-    /// scene files, reports and the command line read.
-    pub const NAMES: [&'static str; 5] = ["auto", "cholesky", "pcg", "amg", "lagged-cholesky"];
-
-    /// Every solver, the iterative ones (see [`LinearSolver::pcg`]) with
-    /// `settings`, in the order of [`LinearSolver::NAMES`].
-    #[must_use]
-    pub const fn all(settings: PcgSettings) -> [Self; 5] {
-        [
-            Self::Auto,
-            Self::Cholesky,
-            Self::Pcg(settings),
-            Self::Amg(settings),
-            Self::LaggedCholesky(settings),
-        ]
-    }
-
-    /// The solver's name as the scene files and reports spell it:
-    /// `"auto"`, `"cholesky"`, `"pcg"`, `"amg"` or `"lagged-cholesky"`
-    /// ([`LinearSolver::NAMES`]).
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        Self::NAMES[match self {
-            Self::Auto => 0,
-            Self::Cholesky => 1,
-            Self::Pcg(_) => 2,
-            Self::Amg(_) => 3,
-            Self::LaggedCholesky(_) => 4,
-        }]
-    }
-
-    /// The solver called `name` (see [`LinearSolver::NAMES`]), an
-    /// iterative one at [`PcgSettings::default`].
-    ///
-    /// ```
-    /// use hooke_implicit::{LinearSolver, PcgSettings};
-    /// let amg = LinearSolver::from_name("amg");
-    /// assert_eq!(amg, Some(LinearSolver::Amg(PcgSettings::default())));
-    /// assert_eq!(LinearSolver::from_name("multigrid"), None);
-    /// ```
-    #[must_use]
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::all(PcgSettings::default())
-            .into_iter()
-            .find(|solver| solver.name() == name)
-    }
 
     /// The settings of a PCG iteration (`pcg`, `amg` and
     /// `lagged-cholesky`): its relative residual tolerance and iteration
@@ -174,11 +116,37 @@ impl LinearSolver {
     }
 
     /// The names of the PCG iterations (see [`LinearSolver::pcg`]), in the
-    /// order of [`LinearSolver::NAMES`].
+    /// order of the table ([`Named::TABLE`]).
     pub fn iterative_names() -> impl Iterator<Item = &'static str> {
-        Self::all(PcgSettings::default())
-            .into_iter()
-            .filter(|solver| solver.pcg().is_some())
-            .map(Self::name)
+        Self::TABLE
+            .iter()
+            .filter(|(solver, _)| solver.pcg().is_some())
+            .map(|&(_, name)| name)
     }
+}
+
+impl Named for LinearSolver {
+    /// `"auto"`, `"cholesky"`, `"pcg"`, `"amg"` and `"lagged-cholesky"`, the
+    /// iterative ones at [`PcgSettings::DEFAULT`]: the names scene files
+    /// (`solver`), the command line (`--solver`), reports
+    /// ([`StepReport::linear_solver`](hooke_core::StepReport::linear_solver))
+    /// and messages use.
+    ///
+    /// ```
+    /// use hooke_core::Named;
+    /// use hooke_implicit::{LinearSolver, PcgSettings};
+    /// let amg = LinearSolver::from_name("amg");
+    /// assert_eq!(amg, Some(LinearSolver::Amg(PcgSettings::default())));
+    /// assert_eq!(LinearSolver::from_name("multigrid"), None);
+    /// ```
+    const TABLE: &'static [(Self, &'static str)] = &[
+        (Self::Auto, "auto"),
+        (Self::Cholesky, "cholesky"),
+        (Self::Pcg(PcgSettings::DEFAULT), "pcg"),
+        (Self::Amg(PcgSettings::DEFAULT), "amg"),
+        (
+            Self::LaggedCholesky(PcgSettings::DEFAULT),
+            "lagged-cholesky",
+        ),
+    ];
 }

@@ -26,6 +26,15 @@ pub enum AmgRenewal {
     SmootherOnly,
 }
 
+impl hooke_core::Named for AmgRenewal {
+    /// `"every-solve"` and `"smoother-only"`, as scene files
+    /// (`amg_renewal`) and reports spell them.
+    const TABLE: &'static [(Self, &'static str)] = &[
+        (Self::EverySolve, "every-solve"),
+        (Self::SmootherOnly, "smoother-only"),
+    ];
+}
+
 impl AmgRenewal {
     /// The renewal of a solve that renews no more than the policy asks.
     fn routine(self) -> Renewal {

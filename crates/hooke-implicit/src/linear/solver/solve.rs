@@ -1,7 +1,7 @@
 //! The solve every Newton step takes: the solver in use, renewing what it
 //! keeps, and [`LinearSolver::Auto`]'s fallback.
 
-use hooke_core::{StepError, StepReport, System, Vec3};
+use hooke_core::{Named, StepError, StepReport, System, Vec3};
 
 use super::LinearSolver;
 use super::auto::trial;

@@ -46,8 +46,8 @@
 use hooke_core::{Mat3, Vec3};
 use nalgebra::{Matrix2, Vector2};
 
-use crate::linear::block::SymBlock;
 use crate::linear::matrix::HessianBlocks;
+use hooke_core::SymBlock;
 
 /// The friction's Hessian in Newton's model of `Φ`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -78,7 +78,7 @@ impl Term for Contact {
     }
 
     /// The moving obstacles' work through the barriers and friction.
-    fn work(&self, system: &System, step: &StepStart<'_>, x: &[Vec3], v: &[Vec3]) -> f64 {
+    fn work(&mut self, system: &System, step: &StepStart<'_>, x: &[Vec3], v: &[Vec3]) -> f64 {
         self.contact
             .obstacle_work(system, (step.x, step.time), x, v)
     }

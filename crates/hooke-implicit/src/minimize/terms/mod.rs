@@ -190,13 +190,16 @@ impl Terms {
     /// The work external agents did over the step from `step` to `(x, v)`
     /// ([`Term::work`]).
     pub(crate) fn work(
-        &self,
+        &mut self,
         system: &System,
         step: &StepStart<'_>,
         x: &[Vec3],
         v: &[Vec3],
     ) -> f64 {
-        self.list.iter().map(|t| t.work(system, step, x, v)).sum()
+        self.list
+            .iter_mut()
+            .map(|t| t.work(system, step, x, v))
+            .sum()
     }
 
     /// Moves `state` to where every barrier is finite before a step

@@ -258,7 +258,7 @@ impl Term for Volume {
 
     /// The work of scripted pins through the elements at them, by the
     /// trapezoid rule, as the springs' ([`Term::work`]).
-    fn work(&self, system: &System, step: &StepStart<'_>, x: &[Vec3], _v: &[Vec3]) -> f64 {
+    fn work(&mut self, system: &System, step: &StepStart<'_>, x: &[Vec3], _v: &[Vec3]) -> f64 {
         let paths = system.pin_paths();
         if paths.is_empty() {
             return 0.0;

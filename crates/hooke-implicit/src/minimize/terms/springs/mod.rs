@@ -204,7 +204,7 @@ impl Term for Springs {
     /// The work of scripted pins through the springs at them, by the
     /// trapezoid rule: `−½(∇ₚV(xₙ) + ∇ₚV(xₙ₊₁))·(xₚ,ₙ₊₁ − xₚ,ₙ)` at each
     /// scripted pin `p`.
-    fn work(&self, system: &System, step: &StepStart<'_>, x: &[Vec3], _v: &[Vec3]) -> f64 {
+    fn work(&mut self, system: &System, step: &StepStart<'_>, x: &[Vec3], _v: &[Vec3]) -> f64 {
         let paths = system.pin_paths();
         if paths.is_empty() {
             return 0.0;

@@ -4,15 +4,18 @@
 //! only, factorized by faer's sparse Cholesky or, where that factor would
 //! be large, applied approximately by one multigrid V-cycle.
 
-use hooke_core::{Spring, StepError, System, Vec3};
+use hooke_core::{Named, Spring, StepError, System, Vec3};
+
+mod layout;
 
 use crate::linear::amg::coarse::ScalarCholesky;
-use crate::linear::amg::csr::Csr;
 use crate::linear::amg::scalar::ScalarAmg;
-use crate::linear::cholesky::{Routes, SpringRoute};
+use crate::linear::cg::PcgSettings;
+use crate::linear::cholesky::{Routes, WeakSprings};
 use crate::linear::pattern::Pattern;
+use crate::linear::solver::LinearSolver;
 use crate::linear::vector::for_each_row;
-use crate::{LinearSolver, PcgSettings, WeakSprings};
+use layout::Layout;
 
 /// How a [`Laplacian`] applies its inverse.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -29,6 +32,19 @@ pub(crate) enum Inverse {
     /// multigrid beyond.
     #[default]
     Auto,
+}
+
+impl LinearSolver {
+    /// How the quasi-Newton step applies `H₀⁻¹` under this setting:
+    /// multigrid for [`LinearSolver::Amg`], the factor or multigrid by the
+    /// factor's size for [`LinearSolver::Auto`], the factor otherwise.
+    pub(crate) fn initial_hessian_inverse(self) -> Inverse {
+        match self {
+            Self::Amg(_) => Inverse::Multigrid,
+            Self::Auto => Inverse::Auto,
+            Self::Pcg(_) | Self::Cholesky | Self::LaggedCholesky(_) => Inverse::Factor,
+        }
+    }
 }
 
 /// The largest Cholesky factor of the whole matrix [`Inverse::Auto`] keeps,
@@ -50,108 +66,6 @@ pub(crate) const FACTOR_ENTRIES_PER_UNKNOWN: usize = 96;
 enum Solver {
     Factor(ScalarCholesky),
     Multigrid(Option<ScalarAmg>, Vec<f64>),
-}
-
-/// The matrix's pattern over the free particles and where each spring's
-/// term goes in its values.
-#[derive(Debug)]
-struct Layout {
-    a: Csr,
-    /// Per free particle, its diagonal entry in `a`'s values.
-    diagonal: Vec<u32>,
-    /// Per spring, the entries `(i, i), (j, j), (i, j), (j, i)` of `a`'s
-    /// values it adds to (`u32::MAX` where an end is pinned, and all four
-    /// for a routed spring).
-    entries: Vec<[u32; 4]>,
-    /// The routed springs: each one's index, the entries of its two legs
-    /// (as in `entries`) and their weights.
-    routed: Vec<(u32, [[u32; 4]; 2], [f64; 2])>,
-}
-
-impl Layout {
-    /// The layout of `system`'s matrix over the unknowns `unknown`
-    /// (`u32::MAX` for a pinned particle) with the springs `routes` carried
-    /// on their legs (sorted by spring); `None` beyond 32-bit indices.
-    fn new(system: &System, unknown: &[u32], routes: &[SpringRoute]) -> Option<Self> {
-        let free = unknown.iter().filter(|&&u| u != u32::MAX).count();
-        let is_routed = |k: usize| routes.binary_search_by_key(&k, |r| r.spring).is_ok();
-        // (row, column) of both triangles, with the particles' diagonals.
-        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(free + 2 * system.springs().len());
-        pairs.extend((0..free as u32).map(|u| (u, u)));
-        for (k, s) in system.springs().iter().enumerate() {
-            let (ui, uj) = (unknown[s.i], unknown[s.j]);
-            if ui != u32::MAX && uj != u32::MAX && !is_routed(k) {
-                pairs.push((ui, uj));
-                pairs.push((uj, ui));
-            }
-        }
-        pairs.sort_unstable();
-        pairs.dedup();
-        if pairs.len() >= u32::MAX as usize {
-            return None;
-        }
-        let mut a = Csr {
-            row_ptr: vec![0; free + 1],
-            col_idx: pairs.iter().map(|&(_, c)| c).collect(),
-            values: vec![0.0; pairs.len()],
-        };
-        for &(r, _) in &pairs {
-            a.row_ptr[r as usize + 1] += 1;
-        }
-        for r in 0..free {
-            a.row_ptr[r + 1] += a.row_ptr[r];
-        }
-        let at = |r: u32, c: u32| -> u32 {
-            if r == u32::MAX || c == u32::MAX {
-                return u32::MAX;
-            }
-            let row = a.row_ptr[r as usize]..a.row_ptr[r as usize + 1];
-            let k = row.start
-                + a.col_idx[row]
-                    .binary_search(&c)
-                    .expect("every spring's entries are in the pattern");
-            k as u32
-        };
-        let diagonal = (0..free as u32).map(|u| at(u, u)).collect();
-        // The entries a term between particles `i` and `j` adds to.
-        let between = |i: usize, j: usize| {
-            let (ui, uj) = (unknown[i], unknown[j]);
-            let off = |r, c| {
-                if ui == u32::MAX || uj == u32::MAX {
-                    u32::MAX
-                } else {
-                    at(r, c)
-                }
-            };
-            [at(ui, ui), at(uj, uj), off(ui, uj), off(uj, ui)]
-        };
-        let entries = system
-            .springs()
-            .iter()
-            .enumerate()
-            .map(|(k, s)| {
-                if is_routed(k) {
-                    [u32::MAX; 4]
-                } else {
-                    between(s.i, s.j)
-                }
-            })
-            .collect();
-        let routed = routes
-            .iter()
-            .map(|r| {
-                let s = &system.springs()[r.spring];
-                let legs = [between(s.i, r.middle), between(r.middle, s.j)];
-                (r.spring as u32, legs, r.weights)
-            })
-            .collect();
-        Some(Self {
-            a,
-            diagonal,
-            entries,
-            routed,
-        })
-    }
 }
 
 /// `(M + a Γ + Σₛ wₛ (eᵢ − eⱼ)(eᵢ − eⱼ)ᵀ)_ff` for one system: `M` the
@@ -382,82 +296,4 @@ impl Laplacian {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use hooke_core::Mat3;
-
-    use crate::linear::cholesky::tests::stiff_and_weak_grid;
-    use crate::linear::vector::dot;
-
-    /// `H₀` at `h = 0.05` s for the grid with weak springs as `weak` says.
-    fn matrix(system: &System, weak: WeakSprings) -> Laplacian {
-        let weights = (0.05, |s: &Spring| 0.05 * s.damping + 0.0025 * s.stiffness);
-        Laplacian::new(system, weights, (0, &[]), (Inverse::Factor, weak), 0.0).unwrap()
-    }
-
-    fn entries(laplacian: &Laplacian) -> usize {
-        match &laplacian.solver {
-            Solver::Factor(factor) => factor.entries(),
-            Solver::Multigrid(..) => unreachable!("a factor was asked for"),
-        }
-    }
-
-    /// `A y`, coordinate by coordinate (nothing is pinned).
-    fn product(a: &Csr, y: &[Vec3]) -> Vec<Vec3> {
-        let mut b = vec![Vec3::zeros(); y.len()];
-        let (mut column, mut out) = (vec![0.0; y.len()], vec![0.0; y.len()]);
-        for c in 0..3 {
-            column.iter_mut().zip(y).for_each(|(x, y)| *x = y[c]);
-            a.apply(&column, &mut out);
-            b.iter_mut().zip(&out).for_each(|(b, o)| b[c] = *o);
-        }
-        b
-    }
-
-    /// With the grid's bending springs routed, `H₀` becomes a matrix `P` at
-    /// least the whole one `A` that equals it on affine fields, with a
-    /// smaller factor: for `b = A y`, `P⁻¹ b` is `y` itself where `y` is
-    /// affine, and for any `y`, `bᵀP⁻¹b ≤ bᵀA⁻¹b = yᵀA y` — strictly
-    /// where the field bends. The columns' spacing grows along the rows, so
-    /// the legs of a route differ in length and each weight must go to its
-    /// own leg for the affine fields to come back.
-    #[test]
-    fn routed_weak_springs_make_a_smaller_majorizer_exact_on_affine_fields() {
-        let n = 12;
-        let system = stiff_and_weak_grid(n, 0.1);
-        let (kept, mut routed) = (
-            matrix(&system, WeakSprings::Kept),
-            matrix(&system, WeakSprings::Routed),
-        );
-        let (whole, carried) = (entries(&kept), entries(&routed));
-        assert!(4 * carried < 3 * whole, "{carried} against {whole}");
-        let gradient = Mat3::new(0.3, -1.2, 0.5, 0.7, 0.2, -0.4, 1.1, 0.6, -0.9);
-        let affine: Vec<Vec3> = system
-            .initial_positions()
-            .iter()
-            .map(|x| gradient * x + Vec3::new(0.1, -0.2, 0.3))
-            .collect();
-        let mut x = product(&kept.layout.a, &affine);
-        routed.apply_inverse_in_place(&mut x);
-        let size = affine.iter().map(|y| y.norm()).fold(0.0, f64::max);
-        for (i, (x, y)) in x.iter().zip(&affine).enumerate() {
-            assert!(
-                (x - y).norm() < 1e-9 * size,
-                "particle {i}: {x:?} against {y:?}"
-            );
-        }
-        let bent: Vec<Vec3> = system
-            .initial_positions()
-            .iter()
-            .map(|p| Vec3::new((3.0 * p.x).sin(), (p.x * p.z).cos(), (2.0 * p.z).sin()))
-            .collect();
-        let b = product(&kept.layout.a, &bent);
-        let mut x = b.clone();
-        routed.apply_inverse_in_place(&mut x);
-        let (majorized, whole) = (dot(&b, &x), dot(&b, &bent));
-        assert!(
-            majorized < whole * (1.0 - 1e-9),
-            "{majorized} against {whole}"
-        );
-    }
-}
+mod tests;

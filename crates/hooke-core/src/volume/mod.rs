@@ -1,13 +1,12 @@
 //! [`Tet`]: a volume element, the energy that keeps a tetrahedron's signed
 //! volume near its rest volume and pushes an inverted one back out.
 
-use nalgebra::{Matrix3, SMatrix};
+mod svd;
 
-use crate::{Mat3, Vec3};
+use nalgebra::Matrix3;
 
-/// A 12 × 12 matrix: the Hessian of one element in its four vertices'
-/// coordinates, vertex `a`'s rows and columns at `3a..3a + 3`.
-pub type Mat12 = SMatrix<f64, 12, 12>;
+use crate::{Mat3, Mat12, Vec3, Vec12};
+use svd::signed_svd;
 
 /// A volume element: four particles, their rest volume and the modulus of
 /// the energy `½ κ V₀ (J − 1)²`.
@@ -53,7 +52,8 @@ pub type Mat12 = SMatrix<f64, 12, 12>;
 /// [`Tet::derivatives`] returns the exact Hessian, the projected one with
 /// these negative eigenvalues clamped to zero — positive semidefinite, equal
 /// to the exact one where that is, at the cost of one 3 × 3 SVD and one
-/// 3 × 3 symmetric eigensolve — or the Gauss–Newton part `κ V₀ ∇J ∇Jᵀ`
+/// 3 × 3 symmetric eigensolve (nalgebra's `SymmetricEigen`, as for the
+/// contact pairs) — or the Gauss–Newton part `κ V₀ ∇J ∇Jᵀ`
 /// ([`TetHessian`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tet {
@@ -332,7 +332,7 @@ impl Tet {
                 return;
             }
             let w = self.spread(&q);
-            let w = SMatrix::<f64, 12, 1>::from_iterator(w.iter().flat_map(|c| c.iter().copied()));
+            let w = Vec12::from_iterator(w.iter().flat_map(|c| c.iter().copied()));
             hessian.ger(lambda, &w, &w, 1.0);
         };
         let r = std::f64::consts::FRAC_1_SQRT_2;
@@ -343,11 +343,11 @@ impl Tet {
         }
         let g = Vec3::new(s1 * s2, s0 * s2, s0 * s1);
         let a = Matrix3::new(0.0, s2, s1, s2, 0.0, s0, s1, s0, 0.0);
-        let (values, vectors) = symmetric_eigen(stiffness * g * g.transpose() + slope * a);
+        let scaling = (stiffness * g * g.transpose() + slope * a).symmetric_eigen();
         for k in 0..3 {
-            let w = vectors.column(k);
+            let w = scaling.eigenvectors.column(k);
             let q = (0..3).fold(Mat3::zeros(), |q, i| q + w[i] * uc[i] * vc[i].transpose());
-            add_mode(values[k], q);
+            add_mode(scaling.eigenvalues[k], q);
         }
         hessian
     }
@@ -377,285 +377,5 @@ fn edges(p: &[Vec3; 4]) -> Mat3 {
     Mat3::from_columns(&edge_vectors(p))
 }
 
-/// `F = U diag(σ) Vᵀ` with `U` and `V` rotations and `σ₀ ≥ σ₁ ≥ |σ₂|`:
-/// where a reflection is needed, the last singular value carries the sign
-/// (negative for `det F < 0`).
-///
-/// `V` and `σ²` are the eigenpairs of `FᵀF`; `uₖ = F vₖ / σₖ` for the two
-/// largest, `u₂ = u₀ × u₁` (so `U` is a rotation) and `σ₂ = u₂ᵀ F v₂`, which
-/// keeps its sign and its accuracy for a nearly flat element, where
-/// `√(σ₂²)` would not. A degenerate `F` (an element collapsed onto a line
-/// or a point) gets any orthonormal completion.
-fn signed_svd(f: &Mat3) -> (Mat3, Vec3, Mat3) {
-    let (values, mut v) = symmetric_eigen(f.transpose() * f);
-    let mut order = [0, 1, 2];
-    order.sort_by(|&a, &b| values[b].total_cmp(&values[a]));
-    v = Mat3::from_columns(&order.map(|k| v.column(k).into_owned()));
-    if v.determinant() < 0.0 {
-        v.column_mut(2).neg_mut();
-    }
-    let (v0, v1, v2): (Vec3, Vec3, Vec3) =
-        (v.column(0).into(), v.column(1).into(), v.column(2).into());
-    let u0 = (f * v0).try_normalize(0.0).unwrap_or_else(Vec3::x);
-    let mut u1 = f * v1 - (f * v1).dot(&u0) * u0;
-    if u1.norm() <= 1e-300 {
-        u1 = orthogonal(u0);
-    }
-    let u1 = u1.normalize();
-    let u2 = u0.cross(&u1);
-    let sigma = Vec3::new((f * v0).dot(&u0), (f * v1).dot(&u1), (f * v2).dot(&u2));
-    (Mat3::from_columns(&[u0, u1, u2]), sigma, v)
-}
-
-/// A unit vector orthogonal to the unit vector `u`.
-fn orthogonal(u: Vec3) -> Vec3 {
-    let helper = if u.x.abs() < 0.9 {
-        Vec3::x()
-    } else {
-        Vec3::y()
-    };
-    u.cross(&helper).normalize()
-}
-
-/// The eigenvalues and eigenvectors (columns) of the symmetric `m`, by
-/// cyclic Jacobi rotations: each zeroes one off-diagonal entry, and the
-/// sweeps stop when the off-diagonal part is below 10⁻¹⁵ of the norm,
-/// after a few sweeps for a 3 × 3 matrix.
-fn symmetric_eigen(m: Mat3) -> (Vec3, Mat3) {
-    let mut a = m;
-    let mut v = Mat3::identity();
-    let scale = m.norm();
-    for _ in 0..20 {
-        let off = a[(0, 1)].powi(2) + a[(0, 2)].powi(2) + a[(1, 2)].powi(2);
-        if off.sqrt() <= 1e-15 * scale {
-            break;
-        }
-        for (p, q, r) in [(0, 1, 2), (0, 2, 1), (1, 2, 0)] {
-            let apq = a[(p, q)];
-            if apq == 0.0 {
-                continue;
-            }
-            // The rotation by θ with cot 2θ = (a_qq − a_pp) / 2a_pq,
-            // t = tan θ the smaller root, applied as `a ← Pᵀ a P`,
-            // `v ← v P` (Numerical Recipes, §11.1).
-            let theta = (a[(q, q)] - a[(p, p)]) / (2.0 * apq);
-            let t = if theta == 0.0 {
-                1.0
-            } else {
-                theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt())
-            };
-            let c = 1.0 / (t * t + 1.0).sqrt();
-            let s = t * c;
-            a[(p, p)] -= t * apq;
-            a[(q, q)] += t * apq;
-            a[(p, q)] = 0.0;
-            a[(q, p)] = 0.0;
-            let (arp, arq) = (a[(r, p)], a[(r, q)]);
-            a[(r, p)] = c * arp - s * arq;
-            a[(p, r)] = a[(r, p)];
-            a[(r, q)] = s * arp + c * arq;
-            a[(q, r)] = a[(r, q)];
-            for k in 0..3 {
-                let (vkp, vkq) = (v[(k, p)], v[(k, q)]);
-                v[(k, p)] = c * vkp - s * vkq;
-                v[(k, q)] = s * vkp + c * vkq;
-            }
-        }
-    }
-    (a.diagonal(), v)
-}
-
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A tet with a non-trivial rest shape, modulus 1000 Pa.
-    fn tet() -> (Tet, [Vec3; 4]) {
-        let rest = [
-            Vec3::new(0.1, 0.0, 0.05),
-            Vec3::new(1.1, 0.2, 0.0),
-            Vec3::new(0.3, 0.9, 0.1),
-            Vec3::new(0.2, 0.3, 1.2),
-        ];
-        (Tet::at_rest([0, 1, 2, 3], 1000.0, rest).unwrap(), rest)
-    }
-
-    /// Configurations: at rest, stretched and sheared, nearly flat (the apex
-    /// almost in the base's plane), inverted (the apex through the base).
-    fn configurations() -> Vec<(&'static str, [Vec3; 4])> {
-        let (_, rest) = tet();
-        let stretched = rest.map(|p| Vec3::new(1.3 * p.x + 0.2 * p.y, 0.9 * p.y, 1.1 * p.z));
-        let base_normal = (rest[1] - rest[0]).cross(&(rest[2] - rest[0])).normalize();
-        let height = (rest[3] - rest[0]).dot(&base_normal);
-        let mut flat = rest;
-        flat[3] -= 0.999 * height * base_normal;
-        let mut inverted = rest;
-        inverted[3] -= 1.6 * height * base_normal;
-        vec![
-            ("rest", rest),
-            ("stretched", stretched),
-            ("nearly flat", flat),
-            ("inverted", inverted),
-        ]
-    }
-
-    fn flat(x: &[Vec3; 4]) -> [f64; 12] {
-        let mut out = [0.0; 12];
-        for (a, p) in x.iter().enumerate() {
-            out[3 * a..3 * a + 3].copy_from_slice(p.as_slice());
-        }
-        out
-    }
-
-    fn shifted(x: &[Vec3; 4], k: usize, by: f64) -> [Vec3; 4] {
-        let mut y = *x;
-        y[k / 3][k % 3] += by;
-        y
-    }
-
-    /// The signed SVD and the symmetric eigensolver reproduce their
-    /// matrices, with rotations and orthonormal eigenvectors, for general,
-    /// inverted, flat and degenerate matrices.
-    #[test]
-    fn decompositions_reproduce_their_matrices() {
-        let mut rng = crate::collision::distance::tests::Rng::new(3);
-        let mut cases: Vec<Mat3> = (0..100)
-            .map(|_| Mat3::from_fn(|_, _| rng.uniform(-2.0, 2.0)))
-            .collect();
-        cases.push(Mat3::identity());
-        cases.push(Mat3::from_diagonal(&Vec3::new(1.0, 1.0, -1.0)));
-        cases.push(Mat3::from_diagonal(&Vec3::new(2.0, 0.5, 0.0)));
-        cases.push(Vec3::new(1.0, 2.0, 3.0) * Vec3::new(0.5, -1.0, 0.2).transpose());
-        cases.push(Mat3::zeros());
-        for f in cases {
-            let (u, sigma, v) = signed_svd(&f);
-            let scale = f.norm().max(1.0);
-            assert!((u * Mat3::from_diagonal(&sigma) * v.transpose() - f).norm() < 1e-12 * scale);
-            for r in [u, v] {
-                assert!((r.transpose() * r - Mat3::identity()).norm() < 1e-12);
-                assert!((r.determinant() - 1.0).abs() < 1e-12);
-            }
-            assert!(sigma[0] >= sigma[1] - 1e-12 && sigma[1] >= sigma[2].abs() - 1e-12);
-            assert!(sigma[2] * f.determinant() >= -1e-12);
-            let symmetric = f + f.transpose();
-            let (values, vectors) = symmetric_eigen(symmetric);
-            let rebuilt = vectors * Mat3::from_diagonal(&values) * vectors.transpose();
-            assert!((rebuilt - symmetric).norm() < 1e-12 * scale);
-            assert!((vectors.transpose() * vectors - Mat3::identity()).norm() < 1e-12);
-        }
-    }
-
-    #[test]
-    fn rest_volume_and_orientation() {
-        let (t, rest) = tet();
-        let expected = (rest[1] - rest[0])
-            .cross(&(rest[2] - rest[0]))
-            .dot(&(rest[3] - rest[0]))
-            / 6.0;
-        assert!((t.rest_volume - expected).abs() < 1e-15);
-        assert!((t.volume_ratio(&rest) - 1.0).abs() < 1e-14);
-        let mirrored =
-            Tet::at_rest([0, 1, 3, 2], 1.0, [rest[0], rest[1], rest[3], rest[2]]).unwrap();
-        assert_eq!(mirrored.vertices, [0, 1, 2, 3]);
-        assert!(Tet::at_rest([0, 1, 2, 3], 1.0, [rest[0], rest[1], rest[2], rest[0]]).is_none());
-    }
-
-    /// The gradient against central differences of the energy, the exact
-    /// Hessian against central differences of the gradient, in every
-    /// configuration.
-    #[test]
-    fn gradient_and_hessian_match_finite_differences() {
-        let (t, _) = tet();
-        for (name, x) in configurations() {
-            let d = t.derivatives(&x, TetHessian::Exact);
-            assert!((d.energy - t.energy(&x)).abs() <= 1e-12 * d.energy.max(1.0));
-            let j = t.deformation(&x).determinant();
-            assert!((t.volume_ratio(&x) - j).abs() <= 1e-13, "{name}: J ≠ det F");
-            let forces = t.forces(&x);
-            let h = 1e-6;
-            let scale = d.hessian.amax();
-            for k in 0..12 {
-                let (plus, minus) = (shifted(&x, k, h), shifted(&x, k, -h));
-                let numeric = (t.energy(&plus) - t.energy(&minus)) / (2.0 * h);
-                let analytic = d.gradient[k / 3][k % 3];
-                assert!(
-                    (numeric - analytic).abs() <= 1e-6 * scale,
-                    "{name}: ∂E/∂x[{k}] = {analytic}, differences give {numeric}"
-                );
-                assert!((forces[k / 3][k % 3] + analytic).abs() <= 1e-12 * scale);
-                let (gp, gm) = (
-                    flat(&t.derivatives(&plus, TetHessian::Exact).gradient),
-                    flat(&t.derivatives(&minus, TetHessian::Exact).gradient),
-                );
-                for l in 0..12 {
-                    let numeric = (gp[l] - gm[l]) / (2.0 * h);
-                    assert!(
-                        (numeric - d.hessian[(l, k)]).abs() <= 1e-6 * scale,
-                        "{name}: H[{l}, {k}] = {}, differences give {numeric}",
-                        d.hessian[(l, k)]
-                    );
-                }
-            }
-        }
-    }
-
-    /// The projected Hessian is positive semidefinite on random
-    /// deformations, inverted ones included, and equals the exact one at
-    /// rest (where the exact one is); the Gauss–Newton Hessian has the one
-    /// eigenvalue `κ V₀ |∇J|²` and zeros, and equals the exact one at rest
-    /// too.
-    #[test]
-    fn projected_and_gauss_newton_hessians_are_positive_semidefinite() {
-        let (t, rest) = tet();
-        let mut rng = crate::collision::distance::tests::Rng::new(7);
-        for _ in 0..200 {
-            let x = rest.map(|p| p + Vec3::from_fn(|_, _| rng.uniform(-0.6, 0.6)));
-            let h = t.derivatives(&x, TetHessian::Projected).hessian;
-            let exact = t.derivatives(&x, TetHessian::Exact).hessian;
-            let eigen = nalgebra::SymmetricEigen::new(h).eigenvalues;
-            let scale = exact.amax();
-            assert!(
-                eigen.min() >= -1e-10 * scale,
-                "eigenvalue {} at J = {}",
-                eigen.min(),
-                t.volume_ratio(&x)
-            );
-            // Only the negative part is removed: the difference is negative
-            // semidefinite.
-            let removed = nalgebra::SymmetricEigen::new(exact - h).eigenvalues;
-            assert!(removed.max() <= 1e-10 * scale);
-            let gauss_newton = t.derivatives(&x, TetHessian::GaussNewton).hessian;
-            let mut eigen = nalgebra::SymmetricEigen::new(gauss_newton).eigenvalues;
-            eigen.as_mut_slice().sort_by(f64::total_cmp);
-            let dj = t.volume_gradient(&x);
-            let expected =
-                t.modulus * t.rest_volume * dj.iter().map(Vec3::norm_squared).sum::<f64>();
-            assert!((eigen[11] - expected).abs() <= 1e-10 * expected);
-            assert!(eigen.rows(0, 11).amax() <= 1e-10 * expected);
-        }
-        let exact = t.derivatives(&rest, TetHessian::Exact).hessian;
-        for kind in [TetHessian::Projected, TetHessian::GaussNewton] {
-            let at_rest = t.derivatives(&rest, kind).hessian;
-            assert!((at_rest - exact).amax() <= 1e-12 * exact.amax(), "{kind:?}");
-        }
-    }
-
-    /// An inverted element's force raises its volume, a compressed one's
-    /// too, a stretched one's lowers it.
-    #[test]
-    fn forces_push_toward_the_rest_volume() {
-        let (t, rest) = tet();
-        for (name, x) in configurations().into_iter().skip(1) {
-            let j = t.volume_ratio(&x);
-            let f = t.forces(&x);
-            let step = 1e-7;
-            let moved: [Vec3; 4] = std::array::from_fn(|a| x[a] + step * f[a]);
-            let change = t.volume_ratio(&moved) - j;
-            assert!(
-                change * (1.0 - j) > 0.0,
-                "{name}: J = {j} moved by {change}"
-            );
-        }
-        assert!(t.forces(&rest).iter().all(|f| f.norm() < 1e-10));
-    }
-}
+mod tests;
