@@ -9,7 +9,8 @@
 //! - gravity `mᵢ g` and air damping `−γ vᵢ`, if declared;
 //! - the scene's own [`Term`]s ([`SystemBuilder::term`]): any force with a
 //!   potential or dissipation potential, seen by every integrator (the
-//!   [`term`] module gives the interface and its equations);
+//!   [`term`] module gives the interface and its equations), such as the
+//!   drag of a [`Wind`] on a system's surfaces;
 //! - pins: a pinned particle has zero acceleration, or follows a scripted
 //!   [`Path`] ([`SystemBuilder::pin_moving`]);
 //! - kinematic [`Obstacle`]s (plane, sphere, box, capsule, optionally moving
@@ -77,6 +78,7 @@ mod sym_block;
 mod system;
 pub mod term;
 mod volume;
+mod wind;
 
 pub use builder::{SpringEntry, SurfaceEntry, SystemBuilder};
 pub use contact::respond_to_contact;
@@ -96,6 +98,7 @@ pub use sym_block::SymBlock;
 pub use system::{Inversion, System};
 pub use term::{At, Hessian, Potential, StepStart, Term, When};
 pub use volume::{TET_PAIRS, Tet, TetBlocks, TetDerivatives, TetHessian};
+pub use wind::Wind;
 
 /// A 3-vector of `f64`: positions, velocities, forces.
 pub type Vec3 = nalgebra::Vector3<f64>;
