@@ -2,7 +2,8 @@
 //! [`Scene`].
 //!
 //! A scene file states how long to run and at what step (`[simulation]`),
-//! the integrator (`[integrator]`), gravity and air damping (`[world]`), any
+//! the integrator (`[integrator]`), gravity, air damping and wind
+//! (`[world]`), any
 //! number of bodies (`[[bodies]]`, each with a `type`: `cloth`, `rope`,
 //! `lattice`, `tet-mesh`, `layered` or `obj`), their pins, scripted pin
 //! motion, collision settings and volume energy (`volume`), and obstacles
@@ -55,7 +56,7 @@ mod values;
 use std::ops::Range;
 use std::path::Path;
 
-use hooke_core::{BuildError, SystemBuilder};
+use hooke_core::{BuildError, SystemBuilder, Vec3, Wind};
 use toml::de::DeTable;
 
 use crate::{Scene, SceneBody};
@@ -117,6 +118,7 @@ pub(crate) fn parse_with(
     let integrator = integrator::integrator(&src, header.integrator.as_ref())?;
     let mut builder = SystemBuilder::new();
     let contact_distance = world(&src, header.world.as_ref(), &mut builder)?;
+    let wind = wind(&src, header.world.as_ref())?;
 
     let mut scene_bodies = Vec::new();
     let mut placed = Vec::new();
@@ -167,6 +169,13 @@ pub(crate) fn parse_with(
             springs: springs_before..springs_before + built.body.springs().len(),
             tets: placement.tet_range(),
         });
+    }
+    if let Some((velocity, drag)) = wind {
+        let triangles = scene_bodies
+            .iter()
+            .flat_map(|b| b.triangles.iter().copied())
+            .collect();
+        builder.term(Wind::new(velocity, drag, triangles));
     }
     let mut obstacle_places = Vec::new();
     for (k, value) in tables::tables(&src, obstacle_values, "obstacles")?
@@ -228,7 +237,7 @@ fn world(
 ) -> Result<Option<At>, SceneFileError> {
     let gravity = match world.and_then(|w| w.gravity.as_ref()) {
         Some(g) => vector(src, g, "world.gravity")?,
-        None => hooke_core::Vec3::new(0.0, -9.81, 0.0),
+        None => Vec3::new(0.0, -9.81, 0.0),
     };
     if gravity.norm() > 0.0 {
         builder.gravity(gravity);
@@ -248,6 +257,18 @@ fn world(
         key: key.to_owned(),
         span: d.span(),
     }))
+}
+
+/// `[world] wind`: its velocity (m/s) and drag coefficient (N·s/m³), or
+/// none without it or with no drag. It acts on the surface triangles of
+/// every body, whether or not they collide: what the air meets.
+fn wind(src: &Source<'_>, world: Option<&World>) -> Result<Option<(Vec3, f64)>, SceneFileError> {
+    let Some(wind) = world.and_then(|w| w.wind.as_ref()) else {
+        return Ok(None);
+    };
+    let velocity = vector(src, &wind.velocity, "world.wind.velocity")?;
+    let drag = non_negative(src, &wind.drag, "world.wind.drag", "N·s/m³")?;
+    Ok((drag > 0.0).then_some((velocity, drag)))
 }
 
 /// Where the parts of a system came from in the file, for its build

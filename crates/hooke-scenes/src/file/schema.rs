@@ -68,6 +68,15 @@ pub(crate) struct World {
     pub(crate) gravity: Option<Vector>,
     pub(crate) air_damping: Option<Spanned<f64>>,
     pub(crate) contact_distance: Option<Spanned<f64>>,
+    pub(crate) wind: Option<WindTable>,
+}
+
+/// `[world] wind = { velocity = [x, y, z], drag = c }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct WindTable {
+    pub(crate) velocity: Vector,
+    pub(crate) drag: Spanned<f64>,
 }
 
 /// A spring family: `{ stiffness = k, damping = c }` or
