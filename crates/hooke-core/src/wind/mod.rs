@@ -123,7 +123,9 @@ pub struct Wind {
 /// triangle of no area).
 #[derive(Debug, Clone, Copy)]
 struct Face {
+    /// `c A`, N·s/m.
     drag: f64,
+    /// `n`.
     normal: Vec3,
 }
 
@@ -270,8 +272,7 @@ impl Term for Wind {
         Potential::ZERO
     }
 
-    /// `W = h Σ_T F_T(v)·w` with the lagged triangles (see the module
-    /// docs).
+    /// `W = h Σ_T F_T(v)·w` with the lagged triangles (see [`Wind`]).
     fn work(&mut self, system: &System, step: &StepStart<'_>, _x: &[Vec3], v: &[Vec3]) -> f64 {
         let w = self.velocity;
         self.lag_before_first_step(system);
