@@ -25,8 +25,8 @@
 //! 3. **Newton iterations to convergence** on the incremental potential
 //!    `Φ`, every iterate accepted through a line search that lowers `Φ`,
 //!    stopped by a scale-free rule on the Newton decrement (default
-//!    relative [`Implicit::NEWTON_TOLERANCE`], at most
-//!    [`Implicit::NEWTON_ITERATIONS`] solves); iterative solves stop at a
+//!    relative [`ImplicitSettings::NEWTON_TOLERANCE`], at most
+//!    [`ImplicitSettings::NEWTON_ITERATIONS`] solves); iterative solves stop at a
 //!    forcing term that tightens with the decrement (inexact Newton).
 //! 4. **Acceptance**: a step that does not converge, or a backward-Euler
 //!    step that gains energy beyond the work of external forces, is

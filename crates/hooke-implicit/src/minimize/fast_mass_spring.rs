@@ -7,7 +7,7 @@ use hooke_core::{
     System, Vec3,
 };
 
-use crate::WeakSprings;
+use crate::linear::cholesky::WeakSprings;
 use crate::linear::laplacian::{Inverse, Laplacian};
 use crate::linear::solver::LinearSolver;
 
