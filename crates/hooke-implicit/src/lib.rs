@@ -128,14 +128,15 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod fast_mass_spring;
 mod linear;
 mod minimize;
 mod step;
 
+pub use fast_mass_spring::FastMassSpring;
 pub use linear::cg::PcgSettings;
 pub use linear::cholesky::{Supernodes, WeakSprings};
 pub use linear::solver::{AmgRenewal, AutoSettings, LinearSolver};
-pub use minimize::fast_mass_spring::FastMassSpring;
 pub use minimize::terms::Terms;
 pub use step::error_control::{self, ErrorControl};
 pub use step::implicit::Implicit;
