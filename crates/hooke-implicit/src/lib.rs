@@ -137,10 +137,11 @@ pub use fast_mass_spring::FastMassSpring;
 pub use linear::cg::PcgSettings;
 pub use linear::cholesky::{Supernodes, WeakSprings};
 pub use linear::solver::{AmgRenewal, AutoSettings, LinearSolver};
+pub use minimize::minimizer::Minimizer;
 pub use minimize::terms::Terms;
 pub use step::error_control::{self, ErrorControl};
 pub use step::implicit::Implicit;
-pub use step::scheme::{Minimizer, Scheme};
+pub use step::scheme::Scheme;
 pub use step::settings::ImplicitSettings;
 pub use step::settings::keys::{KeyError, KeyProblem, KeyValue};
 

@@ -381,7 +381,7 @@ mod tests {
                 rounded += 1;
             }
             integrator.step(&system, &mut state, h).unwrap();
-            let laplacian = integrator.quasi.laplacian.as_ref().unwrap();
+            let laplacian = integrator.kept.quasi.laplacian.as_ref().unwrap();
             assert!(laplacian.matches(&system, h.to_bits()), "after t = {t}");
         }
         assert!(rounded > 10, "{rounded} steps rounded");

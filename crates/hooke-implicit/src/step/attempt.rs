@@ -1,20 +1,21 @@
-//! One attempt at an implicit (sub)step: the scheme's coefficients, Baraff
-//! & Witkin's linearised solve, Newton's method from the better of two
-//! starting points, the energy test, and the commit of an accepted step.
+//! One attempt at an implicit (sub)step: the scheme's coefficients, the
+//! starting candidates (Baraff & Witkin's linearised solve among them),
+//! the minimisation by the minimiser the settings name from the better of
+//! them, the energy test, and the commit of an accepted step.
 //! [`Implicit`]'s docs give the equations.
 
-use hooke_core::{
-    At, CompressedSprings, State, StepError, StepReport, StepStart, System, Vec3, When,
-};
+use hooke_core::{At, State, StepError, StepReport, StepStart, System, Vec3, When};
 
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::topology;
 use crate::linear::vector::for_each_row;
-use crate::minimize::newton::{self, Iterates, Newton, velocity_scale};
+use crate::minimize::minimizer::{Rules, Start};
+use crate::minimize::newton::Linear;
+use crate::minimize::objective::{Objective, velocity_scale};
 use crate::minimize::terms::Terms;
 use crate::step::energy::{absorption, rounding};
 use crate::step::implicit::Implicit;
-use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::scheme::Scheme;
 use crate::step::work::Work;
 
 /// What became of an attempt; `error` is the estimated local error and the
@@ -22,8 +23,8 @@ use crate::step::work::Work;
 /// an estimate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Outcome {
-    /// Committed to the state; `easy` when Newton took at most a third of
-    /// its cap, so the next substep may be longer.
+    /// Committed to the state; `easy` when the minimisation took at most a
+    /// third of its cap, so the next substep may be longer.
     Accepted {
         easy: bool,
         error: Option<(f64, u32)>,
@@ -88,21 +89,18 @@ impl Implicit {
         report: &mut StepReport,
     ) -> Result<Outcome, StepError> {
         let saved_history = self.history;
-        let (solver, linearized) = (self.solver_for_topology(), self.is_linearized());
+        let settings = self.settings;
+        let linearized = !settings.minimizer.converges();
         let previous = self.history.take(system, state);
         let time = state.time();
         let (x0, v0) = (state.positions(), state.velocities());
-        let c = Coefficients::new(self.settings.scheme, h, previous);
+        let c = Coefficients::new(settings.scheme, h, previous);
         let beta_h = c.beta * h;
         let Work {
             b,
             dv,
-            delta,
-            v,
+            iterates: it,
             x,
-            trial,
-            ahead,
-            look,
             x_tilde,
             v_tilde,
             u,
@@ -121,39 +119,23 @@ impl Implicit {
             dv.fill(Vec3::zeros());
         }
 
-        let (compressed, strict) = (self.settings.compressed, self.settings.strict);
+        let (compressed, strict) = (settings.compressed, settings.strict);
         let terms = Terms::of(&mut self.terms, system)?;
-        let has_barrier = terms.has_barrier();
-        let quasi = match self.settings.minimizer {
-            Minimizer::QuasiNewton { history, carried } => {
-                let inverse = (
-                    self.settings.solver.initial_hessian_inverse(),
-                    self.settings.weak_springs_used(),
-                );
-                self.quasi.begin(
-                    system,
-                    (beta_h, has_barrier),
-                    (history, carried, inverse),
-                    time,
-                )?;
-                Some(&mut self.quasi)
-            }
-            _ => None,
-        };
         let topology = topology(
             &mut self.topology,
-            solver,
+            settings.minimizer.assembles().then_some(settings.solver),
             (
-                self.settings.amg_renewal,
-                (self.settings.weak_springs_used(), self.settings.supernodes),
+                settings.amg_renewal,
+                (settings.weak_springs_used(), settings.supernodes),
             ),
             (system, terms.pattern()),
         )?;
-        let solve = Solve {
-            system,
-            strict,
-            time,
-            forcing: 0.0,
+        let mut linear = Linear {
+            solve: Solve::new(system, strict, time),
+            topology,
+            pcg,
+            b,
+            report: &mut *report,
         };
         let pinned = self.pins.begin(system, v0, time, h);
         let step = StepStart {
@@ -165,32 +147,33 @@ impl Implicit {
         };
         terms.begin(system, &step);
         // The starting candidates: the first in `v`, a second in `trial`
-        // (none for the quasi-Newton step without barriers). Without
-        // barriers, the first is Baraff & Witkin's linearised step: the
-        // whole step when linearised; the quasi-Newton step, which
-        // assembles no matrix, starts from vₙ.
-        let (lin_steps, second_start) = if let Some(start) = terms.start() {
-            // Newton starts from the feasible positions of the step's start
-            // or, if lower in Φ, from the inertial predictor vₙ + z as far
-            // towards it as no pair comes closer than a tenth of its gap.
+        // (none for a minimiser that assembles no matrix, without
+        // barriers). Without barriers, the first is Baraff & Witkin's
+        // linearised step; the quasi-Newton step starts from vₙ.
+        let start = if let Some(start) = terms.start() {
+            // The feasible positions of the step's start and the inertial
+            // predictor vₙ + z as far towards it as no pair comes closer
+            // than a tenth of its gap.
             let prescribed = &self.pins.prescribed;
-            for_each_row(v, |i, v| {
+            for_each_row(&mut it.v, |i, v| {
                 *v = if system.is_pinned(i) {
                     v0[i] + prescribed[i]
                 } else {
                     (start[i] - x_tilde[i]) / beta_h
                 };
             });
-            for_each_row(trial, |i, t| *t = v0[i] + prescribed[i] - v[i]);
+            let (v, ahead) = (&it.v, &mut it.ahead);
+            for_each_row(&mut it.trial, |i, t| *t = v0[i] + prescribed[i] - v[i]);
             for_each_row(x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
+            let trial = &it.trial;
             for_each_row(ahead, |i, a| *a = beta_h * trial[i]);
             let tau = terms.limit(system, x, ahead);
-            for_each_row(trial, |i, t| *t = v[i] + tau * *t);
-            (1, true)
-        } else if quasi.is_some() {
+            for_each_row(&mut it.trial, |i, t| *t = v[i] + tau * *t);
+            Start::Feasible
+        } else if !settings.minimizer.assembles() {
             let prescribed = &self.pins.prescribed;
-            for_each_row(v, |i, v| *v = v0[i] + prescribed[i]);
-            (0, false)
+            for_each_row(&mut it.v, |i, v| *v = v0[i] + prescribed[i]);
+            Start::Current
         } else {
             let at = At {
                 x: x0,
@@ -200,70 +183,42 @@ impl Implicit {
                 displacement: Some(u),
                 compressed,
             };
-            solve.assemble(terms, topology, &at, b)?;
+            linear.assemble(terms, &at)?;
             if pinned {
-                self.pins.prescribe(topology.matrix(), b);
+                self.pins.prescribe(linear.topology.matrix(), linear.b);
             }
-            solve.solve(topology, x0, b, dv, pcg, report)?;
+            linear.solve(x0, dv)?;
             let prescribed = &self.pins.prescribed;
-            for_each_row(v, |i, v| *v = v0[i] + dv[i] + prescribed[i]);
-            for_each_row(trial, |i, t| *t = v0[i] + prescribed[i]);
-            (0, true)
+            for_each_row(&mut it.v, |i, v| *v = v0[i] + dv[i] + prescribed[i]);
+            for_each_row(&mut it.trial, |i, t| *t = v0[i] + prescribed[i]);
+            Start::Linearized
         };
-        let mut newton = Newton {
+        let mut phi = Objective {
             system,
-            solve,
-            topology,
             terms: &mut *terms,
-            compressed,
             x_tilde,
             v_tilde,
             beta_h,
+            compressed,
             x,
-            b,
             motion: u,
-            pcg,
-            report,
-            inexact: self.settings.inexact_newton,
-            hessian: CompressedSprings::Exact,
-            quasi,
-            evaluated_residual: false,
         };
-        let outcome = if linearized && !has_barrier {
-            newton::Outcome {
-                converged: true,
-                iterations: 1,
-                residual: 0.0,
-            }
-        } else {
-            // Newton starts where Φ is lower: at the first candidate (the
-            // linearised step's velocities, or the feasible start) or at the
-            // second (vₙ with the prescribed velocity changes applied, as far
-            // as contact allows). Every Newton step then lies in the free
-            // directions. With barriers, the linearised step is one Newton
-            // step from there, bounded by collision detection.
-            let start = newton.start(v, second_start.then_some(&mut *trial));
-            let mut iterates = Iterates {
-                v,
-                delta,
-                trial,
-                ahead,
-                look,
-            };
-            let (iterations, tolerance) = if linearized {
-                (lin_steps, f64::INFINITY)
-            } else {
-                (
-                    self.settings.newton_iterations,
-                    self.settings.newton_tolerance,
-                )
-            };
-            let mut outcome = newton.minimize(&mut iterates, v0, start, iterations, tolerance)?;
-            if linearized {
-                outcome.converged = true;
-            }
-            outcome
+        let rules = Rules {
+            iterations: settings.newton_iterations,
+            tolerance: settings.newton_tolerance,
+            inexact: settings.inexact_newton,
+            solver: settings.solver,
+            weak_springs: settings.weak_springs_used(),
         };
+        let outcome = settings.minimizer.minimize(
+            rules,
+            &mut self.kept,
+            &mut phi,
+            linear,
+            it,
+            (v0, start),
+        )?;
+        let v = &mut it.v;
         for_each_row(x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
 
         // The energy test.
@@ -283,14 +238,14 @@ impl Implicit {
             let scale = velocity_scale(system, v.iter().copied(), v0, beta_h);
             (
                 factor,
-                outcome.converged && shift <= self.settings.newton_tolerance * scale,
+                outcome.converged && shift <= settings.newton_tolerance * scale,
             )
         } else {
             (1.0, false)
         };
         report.newton_iterations += outcome.iterations;
         report.newton_iterations_max = report.newton_iterations_max.max(outcome.iterations);
-        let error = self.settings.error_control.and_then(|control| {
+        let error = settings.error_control.and_then(|control| {
             let order = if two_step { 2 } else { 1 };
             let earlier = self.earlier.unwrap_or(f64::NAN);
             let past = [(&x_prev[..], previous?), (&x_earlier[..], earlier)];
@@ -351,7 +306,7 @@ impl Implicit {
         // crosses one).
         report.contacts = touching + system.end_step(state);
         Ok(Outcome::Accepted {
-            easy: 3 * outcome.iterations <= self.settings.newton_iterations,
+            easy: 3 * outcome.iterations <= settings.newton_iterations,
             error,
         })
     }

@@ -3,7 +3,7 @@
 use hooke_core::{History, ParameterError};
 
 use crate::linear::solver::topology::Topology;
-use crate::minimize::quasi_newton::QuasiNewton;
+use crate::minimize::minimizer::Kept;
 use crate::minimize::terms::Terms;
 use crate::step::comparison::Comparison;
 use crate::step::conditioning::LongestStep;
@@ -39,7 +39,7 @@ use crate::step::work::Work;
 /// positive part) where it is not, so that every step descends. Every iterate, the first one included, is
 /// accepted only through a line search that decreases `Φ` (Armijo,
 /// extended with a watchdog step and extrapolation; see the
-/// `newton` module). It stops when the Newton decrement `λ = √(δᵀAδ)`,
+/// `line_search` module). It stops when the Newton decrement `λ = √(δᵀAδ)`,
 /// which bounds the velocity error in the mass norm and whose square
 /// halved estimates how far `Φ` is above its minimum, is small against the
 /// step's velocity scale,
@@ -188,7 +188,8 @@ pub struct Implicit {
     /// The terms of the last system stepped.
     pub(crate) terms: Option<Terms>,
     pub(crate) pins: Pins,
-    pub(crate) quasi: QuasiNewton,
+    /// What the minimisers keep from one (sub)step to the next.
+    pub(crate) kept: Kept,
     pub(crate) work: Work,
 }
 
@@ -260,7 +261,7 @@ impl Implicit {
             longest: LongestStep::default(),
             terms: None,
             pins: Pins::default(),
-            quasi: QuasiNewton::default(),
+            kept: Kept::default(),
             work: Work::default(),
         }
     }

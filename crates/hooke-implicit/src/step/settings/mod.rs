@@ -12,8 +12,9 @@ use hooke_core::{CompressedSprings, Named, Parameter, ParameterError};
 
 use crate::linear::cholesky::{Supernodes, WeakSprings};
 use crate::linear::solver::{AmgRenewal, LinearSolver};
+use crate::minimize::minimizer::Minimizer;
 use crate::step::error_control::ErrorControl;
-use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::scheme::Scheme;
 
 /// The settings of an [`Implicit`](crate::Implicit) integrator: the scheme, the minimiser
 /// and its stopping rule, the linear solver and how it factors or renews
@@ -230,9 +231,7 @@ impl ImplicitSettings {
     /// ```
     #[must_use]
     pub fn weak_springs_used(&self) -> WeakSprings {
-        self.weak_springs.unwrap_or(match self.minimizer {
-            Minimizer::QuasiNewton { .. } => WeakSprings::Routed,
-            Minimizer::Newton | Minimizer::Linearized => WeakSprings::Kept,
-        })
+        self.weak_springs
+            .unwrap_or_else(|| self.minimizer.weak_springs())
     }
 }
