@@ -51,19 +51,22 @@ fn variants() -> Vec<Variant> {
         move || -> Box<dyn Integrator> {
             Box::new(
                 Implicit::backward_euler()
-                    .with_newton(Implicit::NEWTON_ITERATIONS, tol)
+                    .with_newton(ImplicitSettings::NEWTON_ITERATIONS, tol)
                     .unwrap(),
             )
         }
     };
     all.push((
-        format!("Newton, default ({:e}, auto)", Implicit::NEWTON_TOLERANCE),
+        format!(
+            "Newton, default ({:e}, auto)",
+            ImplicitSettings::NEWTON_TOLERANCE
+        ),
         Box::new(|| Box::new(Implicit::backward_euler())),
     ));
     all.push((
         format!(
             "Newton, default ({:e}, auto), weak springs routed",
-            Implicit::NEWTON_TOLERANCE
+            ImplicitSettings::NEWTON_TOLERANCE
         ),
         Box::new(|| Box::new(Implicit::backward_euler().with_weak_springs(WeakSprings::Routed))),
     ));

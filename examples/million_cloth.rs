@@ -36,7 +36,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let tolerance: f64 = args
         .next()
-        .map_or(Ok(Implicit::NEWTON_TOLERANCE), |a| a.parse())?;
+        .map_or(Ok(ImplicitSettings::NEWTON_TOLERANCE), |a| a.parse())?;
     let self_collision = match args.next().as_deref() {
         None | Some("on") => true,
         Some("off") => false,
@@ -70,7 +70,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .with_minimizer(minimizer)
         .with_solver(solver)
         .with_weak_springs(weak)
-        .with_newton(Implicit::NEWTON_ITERATIONS, tolerance)?;
+        .with_newton(ImplicitSettings::NEWTON_ITERATIONS, tolerance)?;
     for step in 0..steps {
         let started = Instant::now();
         let report = integrator.step(&system, &mut state, 1.0 / 60.0)?;

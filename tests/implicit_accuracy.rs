@@ -281,7 +281,7 @@ fn pcg_and_cholesky_give_the_same_step() {
             .zip(b.velocities())
             .map(|(vc, vb)| vc - vb)
             .collect();
-        let bound = steps as f64 * Implicit::NEWTON_TOLERANCE * mass_norm(b.velocities());
+        let bound = steps as f64 * ImplicitSettings::NEWTON_TOLERANCE * mass_norm(b.velocities());
         assert!(
             mass_norm(&difference) <= bound,
             "inexact Newton: {:.3e} against {bound:.3e}",

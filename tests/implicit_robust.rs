@@ -213,7 +213,7 @@ fn a_spinning_compressed_spring_gains_are_absorbed_only_within_the_newton_tolera
         let mut state = system.initial_state();
         let start = system.energy(&state).unwrap().total();
         let mut integrator = Implicit::backward_euler()
-            .with_newton(Implicit::NEWTON_ITERATIONS, tolerance)
+            .with_newton(ImplicitSettings::NEWTON_ITERATIONS, tolerance)
             .unwrap()
             .with_max_halvings(6);
         let report = integrator.step(&system, &mut state, 0.1).unwrap();
@@ -224,7 +224,7 @@ fn a_spinning_compressed_spring_gains_are_absorbed_only_within_the_newton_tolera
         );
         report
     };
-    let default = run(Implicit::NEWTON_TOLERANCE);
+    let default = run(ImplicitSettings::NEWTON_TOLERANCE);
     assert_eq!(default.accepted_steps, 1, "{default:?}");
     assert_eq!(default.energy_corrections, 0, "{default:?}");
     let whole = 0.04 * 0.1 * 0.1;

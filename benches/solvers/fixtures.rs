@@ -125,7 +125,7 @@ pub fn stepped_solvers() -> [LinearSolver; 4] {
 pub fn reference_step(system: &System, start: &State, n: usize) -> State {
     let mut reference = start.clone();
     let report = Implicit::backward_euler()
-        .with_newton(Implicit::NEWTON_ITERATIONS, 1e-9)
+        .with_newton(ImplicitSettings::NEWTON_ITERATIONS, 1e-9)
         .unwrap()
         .step(system, &mut reference, H)
         .unwrap();

@@ -25,8 +25,8 @@
 //! 3. **Newton iterations to convergence** on the incremental potential
 //!    `Φ`, every iterate accepted through a line search that lowers `Φ`,
 //!    stopped by a scale-free rule on the Newton decrement (default
-//!    relative [`Implicit::NEWTON_TOLERANCE`], at most
-//!    [`Implicit::NEWTON_ITERATIONS`] solves); iterative solves stop at a
+//!    relative [`ImplicitSettings::NEWTON_TOLERANCE`], at most
+//!    [`ImplicitSettings::NEWTON_ITERATIONS`] solves); iterative solves stop at a
 //!    forcing term that tightens with the decrement (inexact Newton).
 //! 4. **Acceptance**: a step that does not converge, or a backward-Euler
 //!    step that gains energy beyond the work of external forces, is
@@ -40,7 +40,8 @@
 //! its initial Hessian (Liu, Bouaziz & Kavan 2017): no 3×3-block matrix,
 //! three pairs of triangular solves and about two passes over the springs
 //! (each giving `Φ` and its gradient) an iteration, the same line search,
-//! stopping rule, energy test and substeps.
+//! stopping rule, energy test and substeps. [`Minimizer::Linearized`] is
+//! Newton's method stopped after one iteration: Baraff & Witkin's step.
 //!
 //! Everything that configures a step — the scheme, the minimiser and its
 //! stopping rule, the solver, the substeps — is one plain
@@ -51,7 +52,32 @@
 //!
 //! Beside [`Implicit`], [`FastMassSpring`] takes backward-Euler steps the
 //! way Liu et al. (2013) do: a fixed number of local/global iterations on a
-//! constant, prefactored matrix, converging to the same step.
+//! constant, prefactored matrix, converging to the same step. It is an
+//! integrator of its own, not a minimiser of the implicit step's `Φ`: no
+//! line search, stopping rule, energy test or substeps, contacts resolved
+//! after the step.
+//!
+//! # Layout
+//!
+//! Three layers, each importing only the ones below it:
+//!
+//! - `linear`: the block matrix and its pattern, the per-particle filters,
+//!   PCG, sparse Cholesky, multigrid, the scalar Laplacian, and the choice
+//!   among the solvers;
+//! - `minimize`: what a step minimises — its terms as one list ([`Terms`],
+//!   contact's barriers and friction among them) and `Φ` over the step's
+//!   velocities — and how: a minimiser is one `Descent` (its directions:
+//!   Newton's method on the assembled system, L-BFGS on its prefactored
+//!   `H₀`), and one line search with its stopping rule and collision
+//!   detection's bound iterates any of them; [`Minimizer`] names each and
+//!   is the one place that builds its implementation;
+//! - `step`: [`Implicit`] and its [`ImplicitSettings`], the caller's step
+//!   in substeps, and one attempt at a substep as the list of its stages —
+//!   the scheme's predictor, the solver's topology, the pins, the terms'
+//!   start, the starting candidates (the linearised solve among them), the
+//!   minimisation, the energy test, the error estimate and the commit.
+//!
+//! [`FastMassSpring`] stands beside `step` on `linear` alone.
 //!
 //! # Stability, measured
 //!
@@ -128,18 +154,20 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod fast_mass_spring;
 mod linear;
 mod minimize;
 mod step;
 
+pub use fast_mass_spring::FastMassSpring;
 pub use linear::cg::PcgSettings;
 pub use linear::cholesky::{Supernodes, WeakSprings};
 pub use linear::solver::{AmgRenewal, AutoSettings, LinearSolver};
-pub use minimize::fast_mass_spring::FastMassSpring;
+pub use minimize::minimizer::Minimizer;
 pub use minimize::terms::Terms;
 pub use step::error_control::{self, ErrorControl};
 pub use step::implicit::Implicit;
-pub use step::scheme::{Minimizer, Scheme};
+pub use step::scheme::Scheme;
 pub use step::settings::ImplicitSettings;
 pub use step::settings::keys::{KeyError, KeyProblem, KeyValue};
 

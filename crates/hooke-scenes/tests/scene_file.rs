@@ -88,7 +88,7 @@ fn the_format_documents_shipped_scenes_as_they_are() {
 }
 
 /// Where `docs/scene-format.md` prints a default beside the constant that
-/// holds it (`` `Implicit::NEWTON_TOLERANCE` (`1e-4`) ``), the printed value
+/// holds it (`` `ImplicitSettings::NEWTON_TOLERANCE` (`1e-4`) ``), the printed value
 /// is the constant's.
 #[test]
 fn the_format_prints_the_defaults_the_constants_hold() {
@@ -97,11 +97,17 @@ fn the_format_prints_the_defaults_the_constants_hold() {
     let constants: [(&str, f64); 10] = [
         ("Minimizer::HISTORY", Minimizer::HISTORY as f64),
         (
-            "Implicit::NEWTON_ITERATIONS",
-            Implicit::NEWTON_ITERATIONS as f64,
+            "ImplicitSettings::NEWTON_ITERATIONS",
+            ImplicitSettings::NEWTON_ITERATIONS as f64,
         ),
-        ("Implicit::NEWTON_TOLERANCE", Implicit::NEWTON_TOLERANCE),
-        ("Implicit::MAX_HALVINGS", f64::from(Implicit::MAX_HALVINGS)),
+        (
+            "ImplicitSettings::NEWTON_TOLERANCE",
+            ImplicitSettings::NEWTON_TOLERANCE,
+        ),
+        (
+            "ImplicitSettings::MAX_HALVINGS",
+            f64::from(ImplicitSettings::MAX_HALVINGS),
+        ),
         ("Implicit::MAX_CONDITION", Implicit::MAX_CONDITION),
         ("DormandPrince::RTOL", DormandPrince::RTOL),
         ("DormandPrince::ATOL", DormandPrince::ATOL),

@@ -122,7 +122,7 @@ fn rtol_atol_strict_and_max_halvings_control_the_implicit_substeps() {
         }
     };
     let defaults = spec("");
-    assert_eq!(defaults, (Implicit::MAX_HALVINGS, false, None));
+    assert_eq!(defaults, (ImplicitSettings::MAX_HALVINGS, false, None));
     assert_eq!(spec("max_halvings = 3\nstrict = true"), (3, true, None));
     let controlled = |keys| spec(keys).2.map(|c| (c.relative(), c.absolute()));
     assert_eq!(

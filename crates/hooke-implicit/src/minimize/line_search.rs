@@ -1,271 +1,282 @@
-//! The line search and stopping rule that Newton's method and the
-//! quasi-Newton step share: [`Newton::minimize`] iterates a minimiser's
-//! directions to convergence, every iterate accepted through the Armijo
-//! condition, full steps extended where the model undershoots, collision
-//! detection bounding every motion.
+//! The line search and stopping rule that every minimiser shares
+//! ([`minimize`]): a [`Descent`]'s directions iterated to convergence, every
+//! iterate accepted through the Armijo condition, full steps extended
+//! where the model undershoots, collision detection bounding every motion;
+//! and the better of two starting points ([`start`]).
 
 use hooke_core::{Potential, StepError, Vec3};
 
 use crate::linear::vector::for_each_row;
-use crate::minimize::newton::{Iterates, Newton, Outcome};
+use crate::minimize::descent::Descent;
+use crate::minimize::objective::Objective;
 
 /// The sufficient-decrease constant `c` of the Armijo condition
 /// `Φ(v + αδ) ≤ Φ(v) + c α ∇Φ·δ`.
 const ARMIJO: f64 = 1e-4;
 
-/// The longest multiple of a Newton step the line search tries.
+/// The longest multiple of a direction the line search tries.
 const MAX_EXTRAPOLATION: f64 = 64.0;
 
-/// The shortest fraction of a Newton step the line search tries.
+/// The shortest fraction of a direction the line search tries.
 const MIN_STEP: f64 = 1e-6;
 
-/// The loosest relative residual an iterative solve of a Newton step may
-/// stop at (the forcing term before the first decrement is known).
-const MAX_FORCING: f64 = 0.1;
+/// How a minimisation ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Outcome {
+    /// Whether the iterate meets the stopping rule.
+    pub(crate) converged: bool,
+    /// Directions taken (look-ahead steps included): for Newton's method
+    /// its linear solves.
+    pub(crate) iterations: usize,
+    /// The last relative Newton decrement ([`Objective::decrement`]).
+    pub(crate) residual: f64,
+}
 
-/// The forcing term of an inexact Newton iteration whose last relative
-/// decrement was `last`: `η = min(0.1, ½ last)`, so that the linear solves
-/// are loose while Newton is far from the answer and tighten with it
-/// (Eisenstat & Walker, *Choosing the forcing terms in an inexact Newton
-/// method*, 1996).
-fn forcing(last: f64) -> f64 {
-    if last.is_finite() {
-        (0.5 * last).min(MAX_FORCING)
+/// The iteration's buffers, one velocity per particle each: the iterate,
+/// its step, a trial point, and the look-ahead step and point of the
+/// watchdog.
+#[derive(Debug, Default)]
+pub(crate) struct Iterates {
+    pub(crate) v: Vec<Vec3>,
+    pub(crate) delta: Vec<Vec3>,
+    pub(crate) trial: Vec<Vec3>,
+    pub(crate) ahead: Vec<Vec3>,
+    pub(crate) look: Vec<Vec3>,
+}
+
+/// The starting point of the iteration: `it.v`, or `it.trial` (swapped
+/// into `it.v`) if `second` and lower in `Φ`; returns `Φ` there.
+fn start<D: Descent>(
+    descent: &mut D,
+    phi: &mut Objective<'_>,
+    it: &mut Iterates,
+    second: bool,
+) -> Potential {
+    let first = descent.value(phi, &it.v);
+    if !second {
+        return first;
+    }
+    let second = descent.value(phi, &it.trial);
+    if second.value < first.value {
+        std::mem::swap(&mut it.v, &mut it.trial);
+        second
     } else {
-        MAX_FORCING
+        descent.discard();
+        first
     }
 }
 
-impl Newton<'_> {
-    /// Minimises `Φ` from the iterate in `it.v` (where `Φ` is `start`) in at
-    /// most `max_iterations` linear solves, `v0` being the step's initial
-    /// velocity. The iteration stops when the relative Newton decrement
-    /// ([`Newton::decrement`]) is at most `tolerance`, or when a full Newton
-    /// step would lower `Φ` by no more than the rounding of `Φ` itself,
-    /// `½|∇Φ·δ| ≤ rounding(Φ)` (stiff springs, whose forces carry the
-    /// rounding of their ends' coordinates times `k`, reach that floor
-    /// first). The quasi-Newton step's `λ`, measured in its model's norm,
-    /// is first scaled by its curvature along `δ` ([`curvature_correction`],
-    /// one evaluation of `Φ` at the full step, which the line search then
-    /// reuses).
-    ///
-    /// Every iterate is accepted through the Armijo condition
-    /// `Φ(v + αδ) ≤ Φ(v) + 10⁻⁴ α ∇Φ·δ`:
-    ///
-    /// - a full step that meets it is extended where the model is stiffer
-    ///   than `Φ` and the step undershoots (a clamped compressed spring,
-    ///   the quartic energy of a flat sheet bending, the quasi-Newton
-    ///   step's initial Hessian `kI` per spring, stiff across a spring
-    ///   where `Φ` is soft), if the quadratic through `Φ(v)`, the slope and
-    ///   `Φ(v + δ)` has its minimum `α*` beyond 1.5 or is not convex.
-    ///   Newton's step doubles `α` (up to 64) while `Φ` keeps falling.
-    ///   L-BFGS's undershoots at almost every iteration, by far more (on
-    ///   the 50 × 50 cloth of the `work_precision` bench, `α*` has a median
-    ///   of 3.5 and reaches 9): it tries `α = min(α*, 64)` once and keeps
-    ///   it if `Φ` is lower there, one evaluation where doubling took
-    ///   three, and doubles below `α*` only if not. Collision detection
-    ///   checks each extension's motion from the last point only, which
-    ///   keeps its cost, growing with the motion, to the step that is
-    ///   tried;
-    /// - a full step that fails it gets the watchdog: one more Newton step
-    ///   from the full step's end, accepted if that point meets the Armijo
-    ///   condition relative to the iterate (Chamberlain, Powell, Lemaréchal &
-    ///   Pedersen, *The watchdog technique*, 1982; Nocedal & Wright,
-    ///   *Numerical Optimization*, §15.6). A stiff spring rotated along a
-    ///   straight line is stretched by `δ²/2L`, which the second step
-    ///   removes, so a rotating stiff body is not held to the steps its
-    ///   stretch allows;
-    /// - otherwise the step backtracks by halves, and Newton's model of
-    ///   the friction turns to the majorizing one for the rest of the step
-    ///   (see the contact module's `friction`): contacts brought to rest
-    ///   through `s = 0` by the exact model, whose friction force is
-    ///   constant while they slide, are what makes a full step fail where
-    ///   a body lands. A line search that finds no decrease down to
-    ///   `α = 10⁻⁶` ends the iteration unconverged.
-    ///
-    /// With `inexact`, an iterative linear solver stops each Newton step at
-    /// the relative residual `η = min(0.1, ½ λ_rel)` of the last relative
-    /// decrement ([`forcing`]) when that is looser than its own tolerance.
-    /// CG started from zero gives a descent direction at every iteration,
-    /// so a loose step still descends, and the stopping rule is checked on
-    /// steps solved to a fraction of the decrement itself.
-    ///
-    /// # Errors
-    /// Assembly and solver errors.
-    pub(crate) fn minimize(
-        &mut self,
-        it: &mut Iterates<'_>,
-        v0: &[Vec3],
-        start: Potential,
-        max_iterations: usize,
-        tolerance: f64,
-    ) -> Result<Outcome, StepError> {
-        let mut current = start;
-        // Φ before the last accepted iterate (for the quasi-Newton floor).
-        let mut previous = f64::INFINITY;
-        let mut outcome = Outcome {
-            converged: false,
-            iterations: 0,
-            residual: f64::INFINITY,
-        };
-        while outcome.iterations < max_iterations {
-            if self.inexact {
-                self.solve.forcing = forcing(outcome.residual);
+/// Minimises `Φ` by `descent`'s directions from the better of the
+/// starting points in `it.v` and, if `second`, `it.trial` ([`start`]) in
+/// at most `max_iterations` directions (for Newton's method, linear
+/// solves), `v0` being the step's initial velocity; leaves the last
+/// iterate in `it.v`. The iteration stops when the relative Newton decrement
+/// ([`Objective::decrement`]) is at most `tolerance`, or when a full
+/// step would lower `Φ` by no more than the rounding of `Φ` itself,
+/// `½|∇Φ·δ| ≤ rounding(Φ)` (stiff springs, whose forces carry the
+/// rounding of their ends' coordinates times `k`, reach that floor
+/// first). Where the model does not have `Φ`'s curvature
+/// ([`Descent::EXACT_CURVATURE`]: the quasi-Newton step), `λ`, measured in
+/// the model's norm, is first scaled by the curvature along `δ`
+/// ([`curvature_correction`], one evaluation of `Φ` at the full step,
+/// which the line search then reuses).
+///
+/// Every iterate is accepted through the Armijo condition
+/// `Φ(v + αδ) ≤ Φ(v) + 10⁻⁴ α ∇Φ·δ`:
+///
+/// - a full step that meets it is extended where the model is stiffer
+///   than `Φ` and the step undershoots (a clamped compressed spring,
+///   the quartic energy of a flat sheet bending, the quasi-Newton
+///   step's initial Hessian `kI` per spring, stiff across a spring
+///   where `Φ` is soft), if the quadratic through `Φ(v)`, the slope and
+///   `Φ(v + δ)` has its minimum `α*` beyond 1.5 or is not convex.
+///   Newton's step doubles `α` (up to 64) while `Φ` keeps falling.
+///   L-BFGS's undershoots at almost every iteration, by far more (on
+///   the 50 × 50 cloth of the `work_precision` bench, `α*` has a median
+///   of 3.5 and reaches 9): it tries `α = min(α*, 64)` once and keeps
+///   it if `Φ` is lower there, one evaluation where doubling took
+///   three, and doubles below `α*` only if not. Collision detection
+///   checks each extension's motion from the last point only, which
+///   keeps its cost, growing with the motion, to the step that is
+///   tried;
+/// - a full step that fails it gets the watchdog: one more step
+///   from the full step's end, accepted if that point meets the Armijo
+///   condition relative to the iterate (Chamberlain, Powell, Lemaréchal &
+///   Pedersen, *The watchdog technique*, 1982; Nocedal & Wright,
+///   *Numerical Optimization*, §15.6). A stiff spring rotated along a
+///   straight line is stretched by `δ²/2L`, which the second step
+///   removes, so a rotating stiff body is not held to the steps its
+///   stretch allows;
+/// - otherwise the step backtracks by halves, and Newton's model of
+///   the friction turns to the majorizing one for the rest of the step
+///   (see the contact module's `friction`): contacts brought to rest
+///   through `s = 0` by the exact model, whose friction force is
+///   constant while they slide, are what makes a full step fail where
+///   a body lands. A line search that finds no decrease down to
+///   `α = 10⁻⁶` ends the iteration unconverged.
+///
+/// Each direction is taken knowing the last relative decrement
+/// ([`Descent::iteration`]), to which Newton's inexact solves tighten.
+///
+/// # Errors
+/// Assembly and solver errors.
+pub(crate) fn minimize<D: Descent>(
+    descent: &mut D,
+    phi: &mut Objective<'_>,
+    it: &mut Iterates,
+    (v0, second): (&[Vec3], bool),
+    (max_iterations, tolerance): (usize, f64),
+) -> Result<Outcome, StepError> {
+    let mut current = start(descent, phi, it, second);
+    // Φ before the last accepted iterate (for the quasi-Newton floor).
+    let mut previous = f64::INFINITY;
+    let mut outcome = Outcome {
+        converged: false,
+        iterations: 0,
+        residual: f64::INFINITY,
+    };
+    while outcome.iterations < max_iterations {
+        descent.iteration(outcome.residual);
+        let slope = descent.direction(phi, &it.v, &mut it.delta)?;
+        outcome.iterations += 1;
+        outcome.residual = phi.decrement(slope, &it.v, &it.delta, v0);
+        // The longest fraction of δ collision detection allows.
+        let limit = phi.limit(&it.v, &it.delta, 1.0);
+        // A quasi-Newton step's model overestimates the curvature of
+        // soft modes and so its predicted decrease; it is at the floor
+        // only once the last iterate lowered Φ by no more than rounding.
+        let floor = 0.5 * slope.abs() <= current.rounding()
+            && (D::EXACT_CURVATURE || previous - current.value <= current.rounding());
+        // The full step's Φ, once the quasi-Newton stopping rule needed it.
+        let mut evaluated = None;
+        if limit >= 1.0 && (outcome.residual <= tolerance || floor) {
+            if D::EXACT_CURVATURE || floor || outcome.residual == 0.0 {
+                add(&mut it.v, &it.delta);
+                outcome.converged = true;
+                break;
             }
-            let slope = self.direction(it.v, it.delta)?;
-            outcome.iterations += 1;
-            outcome.residual = self.decrement(slope, it.v, it.delta, v0);
-            // The longest fraction of δ collision detection allows.
-            let limit = self.limit(it.v, it.delta, 1.0);
-            // A quasi-Newton step's model overestimates the curvature of
-            // soft modes and so its predicted decrease; it is at the floor
-            // only once the last iterate lowered Φ by no more than rounding.
-            let floor = 0.5 * slope.abs() <= current.rounding()
-                && (self.quasi.is_none() || previous - current.value <= current.rounding());
-            // The full step's Φ, once the quasi-Newton stopping rule needed it.
-            let mut evaluated = None;
-            if limit >= 1.0 && (outcome.residual <= tolerance || floor) {
-                if self.quasi.is_none() || floor || outcome.residual == 0.0 {
-                    add(it.v, it.delta);
-                    outcome.converged = true;
-                    break;
-                }
-                combine(it.trial, it.v, 1.0, it.delta);
-                let full = self.potential(it.trial);
-                outcome.residual *= curvature_correction(current.value, slope, full.value);
-                if outcome.residual <= tolerance {
-                    std::mem::swap(it.v, it.trial);
-                    outcome.converged = true;
-                    break;
-                }
-                evaluated = Some(full);
+            combine(&mut it.trial, &it.v, 1.0, &it.delta);
+            let full = descent.value(phi, &it.trial);
+            outcome.residual *= curvature_correction(current.value, slope, full.value);
+            if outcome.residual <= tolerance {
+                std::mem::swap(&mut it.v, &mut it.trial);
+                outcome.converged = true;
+                break;
             }
-            previous = current.value;
-            let sufficient = |value: Potential, alpha: f64| {
-                value.value <= current.value + ARMIJO * alpha * slope
-            };
-            if limit >= 1.0 {
-                let full = evaluated.unwrap_or_else(|| {
-                    combine(it.trial, it.v, 1.0, it.delta);
-                    self.potential(it.trial)
-                });
-                if sufficient(full, 1.0) {
-                    current = self.extend(it, current.value, slope, full);
-                    std::mem::swap(it.v, it.trial);
-                    continue;
-                }
-                if outcome.iterations < max_iterations {
-                    self.direction(it.trial, it.ahead)?;
-                    outcome.iterations += 1;
-                    if self.limit(it.trial, it.ahead, 1.0) >= 1.0 {
-                        combine(it.look, it.trial, 1.0, it.ahead);
-                        let ahead = self.potential(it.look);
-                        if sufficient(ahead, 1.0) {
-                            current = ahead;
-                            std::mem::swap(it.v, it.look);
-                            continue;
-                        }
+            evaluated = Some(full);
+        }
+        previous = current.value;
+        let sufficient =
+            |value: Potential, alpha: f64| value.value <= current.value + ARMIJO * alpha * slope;
+        if limit >= 1.0 {
+            let full = evaluated.unwrap_or_else(|| {
+                combine(&mut it.trial, &it.v, 1.0, &it.delta);
+                descent.value(phi, &it.trial)
+            });
+            if sufficient(full, 1.0) {
+                current = extend(descent, phi, it, current.value, slope, full);
+                std::mem::swap(&mut it.v, &mut it.trial);
+                continue;
+            }
+            if outcome.iterations < max_iterations {
+                descent.direction(phi, &it.trial, &mut it.ahead)?;
+                outcome.iterations += 1;
+                if phi.limit(&it.trial, &it.ahead, 1.0) >= 1.0 {
+                    combine(&mut it.look, &it.trial, 1.0, &it.ahead);
+                    let ahead = descent.value(phi, &it.look);
+                    if sufficient(ahead, 1.0) {
+                        current = ahead;
+                        std::mem::swap(&mut it.v, &mut it.look);
+                        continue;
                     }
-                    // The contact candidates are the look-ahead's: check
-                    // the step's own motion again for the backtracking.
-                    self.limit(it.v, it.delta, 1.0);
                 }
-                self.terms.full_step_failed();
+                // The contact candidates are the look-ahead's: check
+                // the step's own motion again for the backtracking.
+                phi.limit(&it.v, &it.delta, 1.0);
             }
-            let mut alpha = if limit >= 1.0 { 0.5 } else { limit };
-            loop {
-                combine(it.trial, it.v, alpha, it.delta);
-                let value = self.potential(it.trial);
-                if sufficient(value, alpha) {
-                    current = value;
-                    break;
-                }
-                alpha *= 0.5;
-                if alpha < MIN_STEP {
-                    return Ok(outcome);
-                }
-            }
-            std::mem::swap(it.v, it.trial);
+            phi.terms.full_step_failed();
         }
-        Ok(outcome)
+        let mut alpha = if limit >= 1.0 { 0.5 } else { limit };
+        loop {
+            combine(&mut it.trial, &it.v, alpha, &it.delta);
+            let value = descent.value(phi, &it.trial);
+            if sufficient(value, alpha) {
+                current = value;
+                break;
+            }
+            alpha *= 0.5;
+            if alpha < MIN_STEP {
+                return Ok(outcome);
+            }
+        }
+        std::mem::swap(&mut it.v, &mut it.trial);
     }
+    Ok(outcome)
+}
 
-    /// Extends an accepted full step `it.trial = v + δ`, where `Φ` fell
-    /// from `start` (with slope `∇Φ·δ`) to `full`, as [`Newton::minimize`]
-    /// describes: if the minimum `α*` of the quadratic model lies beyond
-    /// 1.5 (or the model is not convex), Newton's step by doublings up to
-    /// 64, the quasi-Newton step to `α*` (at most 64) and, if `Φ` is not
-    /// lower there, by doublings below it. Leaves the lowest point tried in
-    /// `it.trial` and returns `Φ` there.
-    fn extend(
-        &mut self,
-        it: &mut Iterates<'_>,
-        start: f64,
-        slope: f64,
-        full: Potential,
-    ) -> Potential {
-        let mut current = full;
-        let minimum = model_minimum(start, slope, full.value).map(|m| m.min(MAX_EXTRAPOLATION));
-        let doubling_below = match minimum {
-            Some(alpha) if alpha <= 1.5 => return current,
-            Some(alpha) if self.quasi.is_some() => {
-                if let Some(further) = self.further(it, alpha, 1.0, current) {
-                    return further;
-                }
-                alpha
+/// Extends an accepted full step `it.trial = v + δ`, where `Φ` fell
+/// from `start` (with slope `∇Φ·δ`) to `full`, as [`minimize`]
+/// describes: if the minimum `α*` of the quadratic model lies beyond
+/// 1.5 (or the model is not convex), by doublings up to 64 where the
+/// model has `Φ`'s curvature (Newton's step), otherwise (the quasi-Newton
+/// step) to `α*` (at most 64) and, if `Φ` is not lower there, by
+/// doublings below it. Leaves the lowest point tried in
+/// `it.trial` and returns `Φ` there.
+fn extend<D: Descent>(
+    descent: &mut D,
+    phi: &mut Objective<'_>,
+    it: &mut Iterates,
+    start: f64,
+    slope: f64,
+    full: Potential,
+) -> Potential {
+    let mut current = full;
+    let minimum = model_minimum(start, slope, full.value).map(|m| m.min(MAX_EXTRAPOLATION));
+    let doubling_below = match minimum {
+        Some(alpha) if alpha <= 1.5 => return current,
+        Some(alpha) if !D::EXACT_CURVATURE => {
+            if let Some(further) = further(descent, phi, it, alpha, 1.0, current) {
+                return further;
             }
-            _ => 2.0 * MAX_EXTRAPOLATION,
-        };
-        let mut alpha = 2.0;
-        while alpha < doubling_below {
-            match self.further(it, alpha, 0.5 * alpha, current) {
-                Some(further) => current = further,
-                None => break,
-            }
-            alpha *= 2.0;
+            alpha
         }
-        current
+        _ => 2.0 * MAX_EXTRAPOLATION,
+    };
+    let mut alpha = 2.0;
+    while alpha < doubling_below {
+        match further(descent, phi, it, alpha, 0.5 * alpha, current) {
+            Some(further) => current = further,
+            None => break,
+        }
+        alpha *= 2.0;
     }
+    current
+}
 
-    /// Tries `v + αδ` beyond the point `it.trial = v + α₀δ` where `Φ` is
-    /// `current`: if collision detection allows the motion `(α − α₀)δ` from
-    /// there and `Φ` is lower at `v + αδ`, that point becomes `it.trial`
-    /// and its `Φ` is returned; otherwise `None`, `it.trial` as it was.
-    fn further(
-        &mut self,
-        it: &mut Iterates<'_>,
-        alpha: f64,
-        from: f64,
-        current: Potential,
-    ) -> Option<Potential> {
-        let reach = alpha - from;
-        if self.limit(it.trial, it.delta, reach) < reach {
-            return None;
-        }
-        combine(it.look, it.v, alpha, it.delta);
-        let further = self.potential(it.look);
-        if further.value < current.value {
-            std::mem::swap(it.trial, it.look);
-            Some(further)
-        } else {
-            // `b` holds the gradient at the point just rejected.
-            self.evaluated_residual = false;
-            None
-        }
+/// Tries `v + αδ` beyond the point `it.trial = v + α₀δ` where `Φ` is
+/// `current`: if collision detection allows the motion `(α − α₀)δ` from
+/// there and `Φ` is lower at `v + αδ`, that point becomes `it.trial`
+/// and its `Φ` is returned; otherwise `None`, `it.trial` as it was.
+fn further<D: Descent>(
+    descent: &mut D,
+    phi: &mut Objective<'_>,
+    it: &mut Iterates,
+    alpha: f64,
+    from: f64,
+    current: Potential,
+) -> Option<Potential> {
+    let reach = alpha - from;
+    if phi.limit(&it.trial, &it.delta, reach) < reach {
+        return None;
     }
-
-    /// The longest multiple `α ≤ longest` of the step `δ` from `v` that
-    /// the barriers allow: `longest` without barriers, otherwise
-    /// `longest · τ` with `τ` the fraction of the motion `βh longest δ` that
-    /// keeps every contact pair at a tenth of its gap.
-    fn limit(&mut self, v: &[Vec3], delta: &[Vec3], longest: f64) -> f64 {
-        if !self.terms.has_barrier() {
-            return longest;
-        }
-        self.positions(v);
-        let scale = self.beta_h * longest;
-        for_each_row(self.motion, |i, m| *m = scale * delta[i]);
-        longest * self.terms.limit(self.system, self.x, self.motion)
+    combine(&mut it.look, &it.v, alpha, &it.delta);
+    let further = descent.value(phi, &it.look);
+    if further.value < current.value {
+        std::mem::swap(&mut it.trial, &mut it.look);
+        Some(further)
+    } else {
+        descent.discard();
+        None
     }
 }
 

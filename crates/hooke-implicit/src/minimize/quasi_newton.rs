@@ -55,8 +55,9 @@
 
 use hooke_core::{Named, StepError, SymBlock, System, Vec3};
 
-use crate::WeakSprings;
+use crate::linear::cholesky::WeakSprings;
 use crate::linear::laplacian::{Inverse, Laplacian};
+use crate::linear::solver::LinearSolver;
 use crate::linear::vector::{dot, for_each_row};
 
 /// The quasi-Newton state of an integrator: `H₀`'s factor and the curvature
@@ -158,7 +159,7 @@ impl QuasiNewton {
     pub(crate) fn solver_name(&self) -> &'static str {
         self.laplacian
             .as_ref()
-            .map_or(crate::LinearSolver::Cholesky.name(), Laplacian::solver_name)
+            .map_or(LinearSolver::Cholesky.name(), Laplacian::solver_name)
     }
 
     /// Whether `H₀` waits for the contact terms' stand-in
@@ -380,7 +381,7 @@ mod tests {
                 rounded += 1;
             }
             integrator.step(&system, &mut state, h).unwrap();
-            let laplacian = integrator.quasi.laplacian.as_ref().unwrap();
+            let laplacian = integrator.kept.quasi.laplacian.as_ref().unwrap();
             assert!(laplacian.matches(&system, h.to_bits()), "after t = {t}");
         }
         assert!(rounded > 10, "{rounded} steps rounded");

@@ -1,20 +1,25 @@
-//! One attempt at an implicit (sub)step: the scheme's coefficients, Baraff
-//! & Witkin's linearised solve, Newton's method from the better of two
-//! starting points, the energy test, and the commit of an accepted step.
-//! [`Implicit`]'s docs give the equations.
+//! One attempt at an implicit (sub)step, as the list of its stages: the
+//! predictor, the linear solver's topology, the pins, the start of the
+//! terms (contact's pairs, the dampers' directions), the starting
+//! candidates (Baraff & Witkin's linearised solve among them), the
+//! minimisation, the energy test, the error estimate, and the commit of
+//! an accepted step. [`Implicit`]'s docs give the equations.
 
-use hooke_core::{
-    At, CompressedSprings, State, StepError, StepReport, StepStart, System, Vec3, When,
-};
+use hooke_core::{State, StepError, StepReport, StepStart, System, Vec3};
 
 use crate::linear::solver::solve::Solve;
-use crate::linear::solver::topology::topology;
+use crate::linear::solver::topology::{Topology, topology};
 use crate::linear::vector::for_each_row;
-use crate::minimize::newton::{self, Iterates, Newton, velocity_scale};
+use crate::minimize::line_search::Outcome as Minimized;
+use crate::minimize::minimizer::{Kept, Rules, Start};
+use crate::minimize::newton::Linear;
+use crate::minimize::objective::Objective;
 use crate::minimize::terms::Terms;
-use crate::step::energy::{absorption, rounding};
+use crate::step::energy::EnergyTest;
 use crate::step::implicit::Implicit;
-use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::predictor::{Coefficients, Predictor};
+use crate::step::settings::ImplicitSettings;
+use crate::step::start::candidates;
 use crate::step::work::Work;
 
 /// What became of an attempt; `error` is the estimated local error and the
@@ -22,8 +27,8 @@ use crate::step::work::Work;
 /// an estimate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Outcome {
-    /// Committed to the state; `easy` when Newton took at most a third of
-    /// its cap, so the next substep may be longer.
+    /// Committed to the state; `easy` when the minimisation took at most a
+    /// third of its cap, so the next substep may be longer.
     Accepted {
         easy: bool,
         error: Option<(f64, u32)>,
@@ -31,43 +36,6 @@ pub(crate) enum Outcome {
     /// Not converged, gaining energy or above the error tolerance, above
     /// the floor: the state, the contacts and the history are as before.
     Rejected { error: Option<(f64, u32)> },
-}
-
-/// The coefficients of a step of `h` after one of `previous`:
-/// `x = x̃ + βh v` and `v = ṽ + βh M⁻¹ f(x, v)` with
-/// `x̃ = a xₙ − b xₙ₋₁`, `ṽ = a vₙ − b vₙ₋₁`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Coefficients {
-    beta: f64,
-    current: f64,
-    past: f64,
-}
-
-impl Coefficients {
-    /// Backward Euler (`β = a = 1`, `b = 0`), or variable-step BDF2 with
-    /// step ratio `ω = h/hₙ₋₁ ≤ 2`: `β = (1+ω)/(1+2ω)`,
-    /// `a = (1+ω)²/(1+2ω)`, `b = ω²/(1+2ω)` (for `ω = 1` the familiar
-    /// `2/3, 4/3, 1/3`). BDF2 (re)starts with a backward-Euler step.
-    fn new(scheme: Scheme, h: f64, previous: Option<f64>) -> Self {
-        let ratio = previous
-            .map(|last| h / last)
-            .filter(|&omega| scheme == Scheme::Bdf2 && omega <= 2.0 + 1e-9);
-        ratio.map_or(
-            Self {
-                beta: 1.0,
-                current: 1.0,
-                past: 0.0,
-            },
-            |omega| {
-                let d = 1.0 + 2.0 * omega;
-                Self {
-                    beta: (1.0 + omega) / d,
-                    current: (1.0 + omega).powi(2) / d,
-                    past: omega * omega / d,
-                }
-            },
-        )
-    }
 }
 
 impl Implicit {
@@ -87,272 +55,232 @@ impl Implicit {
         at_floor: bool,
         report: &mut StepReport,
     ) -> Result<Outcome, StepError> {
-        let saved_history = self.history;
-        let (solver, linearized) = (self.solver_for_topology(), self.is_linearized());
+        let (settings, saved_history) = (self.settings, self.history);
         let previous = self.history.take(system, state);
-        let time = state.time();
-        let (x0, v0) = (state.positions(), state.velocities());
-        let c = Coefficients::new(self.settings.scheme, h, previous);
-        let beta_h = c.beta * h;
-        let Work {
-            b,
-            dv,
-            delta,
-            v,
-            x,
-            trial,
-            ahead,
-            look,
-            x_tilde,
-            v_tilde,
-            u,
-            x_prev,
-            v_prev,
-            x_earlier,
-            pcg,
-            ..
-        } = &mut self.work;
-        for i in 0..x0.len() {
-            x_tilde[i] = c.current * x0[i] - c.past * x_prev[i];
-            v_tilde[i] = c.current * v0[i] - c.past * v_prev[i];
-            u[i] = x_tilde[i] - x0[i] + beta_h * v0[i];
-        }
-        if previous.is_none() {
-            dv.fill(Vec3::zeros());
-        }
-
-        let (compressed, strict) = (self.settings.compressed, self.settings.strict);
-        let terms = Terms::of(&mut self.terms, system)?;
-        let has_barrier = terms.has_barrier();
-        let quasi = match self.settings.minimizer {
-            Minimizer::QuasiNewton { history, carried } => {
-                let inverse = (
-                    self.settings.solver.initial_hessian_inverse(),
-                    self.settings.weak_springs_used(),
-                );
-                self.quasi.begin(
-                    system,
-                    (beta_h, has_barrier),
-                    (history, carried, inverse),
-                    time,
-                )?;
-                Some(&mut self.quasi)
-            }
-            _ => None,
-        };
-        let topology = topology(
-            &mut self.topology,
-            solver,
-            (
-                self.settings.amg_renewal,
-                (self.settings.weak_springs_used(), self.settings.supernodes),
-            ),
-            (system, terms.pattern()),
-        )?;
-        let solve = Solve {
-            system,
-            strict,
-            time,
-            forcing: 0.0,
-        };
-        let pinned = self.pins.begin(system, v0, time, h);
+        let c = Coefficients::new(settings.scheme, h, previous);
         let step = StepStart {
-            x: x0,
-            v: v0,
-            time,
+            x: state.positions(),
+            v: state.velocities(),
+            time: state.time(),
             h,
-            beta_h,
+            beta_h: c.beta * h,
         };
+        let work = &mut self.work;
+        work.predict(&step, c, previous.is_some());
+        let terms = Terms::of(&mut self.terms, system)?;
+        let topology = topology_for(&mut self.topology, &settings, (system, terms))?;
+        let pinned = self.pins.begin(system, step.v, step.time, h);
         terms.begin(system, &step);
-        // The starting candidates: the first in `v`, a second in `trial`
-        // (none for the quasi-Newton step without barriers). Without
-        // barriers, the first is Baraff & Witkin's linearised step: the
-        // whole step when linearised; the quasi-Newton step, which
-        // assembles no matrix, starts from vₙ.
-        let (lin_steps, second_start) = if let Some(start) = terms.start() {
-            // Newton starts from the feasible positions of the step's start
-            // or, if lower in Φ, from the inertial predictor vₙ + z as far
-            // towards it as no pair comes closer than a tenth of its gap.
-            let prescribed = &self.pins.prescribed;
-            for_each_row(v, |i, v| {
-                *v = if system.is_pinned(i) {
-                    v0[i] + prescribed[i]
-                } else {
-                    (start[i] - x_tilde[i]) / beta_h
-                };
-            });
-            for_each_row(trial, |i, t| *t = v0[i] + prescribed[i] - v[i]);
-            for_each_row(x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
-            for_each_row(ahead, |i, a| *a = beta_h * trial[i]);
-            let tau = terms.limit(system, x, ahead);
-            for_each_row(trial, |i, t| *t = v[i] + tau * *t);
-            (1, true)
-        } else if quasi.is_some() {
-            let prescribed = &self.pins.prescribed;
-            for_each_row(v, |i, v| *v = v0[i] + prescribed[i]);
-            (0, false)
-        } else {
-            let at = At {
-                x: x0,
-                v: v0,
-                v_tilde,
-                beta_h,
-                displacement: Some(u),
-                compressed,
-            };
-            solve.assemble(terms, topology, &at, b)?;
-            if pinned {
-                self.pins.prescribe(topology.matrix(), b);
-            }
-            solve.solve(topology, x0, b, dv, pcg, report)?;
-            let prescribed = &self.pins.prescribed;
-            for_each_row(v, |i, v| *v = v0[i] + dv[i] + prescribed[i]);
-            for_each_row(trial, |i, t| *t = v0[i] + prescribed[i]);
-            (0, true)
-        };
-        let mut newton = Newton {
-            system,
-            solve,
+        let start = candidates(
+            &settings,
+            (system, terms),
+            &step,
+            (&mut self.pins, pinned),
             topology,
-            terms: &mut *terms,
-            compressed,
-            x_tilde,
-            v_tilde,
-            beta_h,
-            x,
-            b,
-            motion: u,
-            pcg,
+            work,
             report,
-            inexact: self.settings.inexact_newton,
-            hessian: CompressedSprings::Exact,
-            quasi,
-            evaluated_residual: false,
-        };
-        let outcome = if linearized && !has_barrier {
-            newton::Outcome {
-                converged: true,
-                iterations: 1,
-                residual: 0.0,
-            }
-        } else {
-            // Newton starts where Φ is lower: at the first candidate (the
-            // linearised step's velocities, or the feasible start) or at the
-            // second (vₙ with the prescribed velocity changes applied, as far
-            // as contact allows). Every Newton step then lies in the free
-            // directions. With barriers, the linearised step is one Newton
-            // step from there, bounded by collision detection.
-            let start = newton.start(v, second_start.then_some(&mut *trial));
-            let mut iterates = Iterates {
-                v,
-                delta,
-                trial,
-                ahead,
-                look,
-            };
-            let (iterations, tolerance) = if linearized {
-                (lin_steps, f64::INFINITY)
-            } else {
-                (
-                    self.settings.newton_iterations,
-                    self.settings.newton_tolerance,
-                )
-            };
-            let mut outcome = newton.minimize(&mut iterates, v0, start, iterations, tolerance)?;
-            if linearized {
-                outcome.converged = true;
-            }
-            outcome
-        };
-        for_each_row(x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
-
-        // The energy test.
-        let before = terms.energy(system, x0, v0, When::Start);
-        let after = terms.energy(system, x, v, When::End);
+        )?;
+        let outcome = minimize(
+            (&settings, &mut self.kept),
+            (system, terms),
+            (&step, start),
+            topology,
+            work,
+            report,
+        )?;
         let two_step = c.past > 0.0;
-        let work = terms.work(system, &step, x, v);
-        let excess =
-            after.value - before.value - work - rounding(before.magnitude.max(after.magnitude));
-        // Converged backward-Euler steps are held to the energy test; BDF2's
-        // two-step steps and the linearised step only report a gain. A gain
-        // that the kinetic energy absorbs by moving the velocities less
-        // than the stopping rule's tolerance passes (the `energy` module).
-        let tested = !linearized && !two_step;
-        let (factor, within_tolerance) = if excess > 0.0 {
-            let (factor, shift) = absorption(system, v, excess);
-            let scale = velocity_scale(system, v.iter().copied(), v0, beta_h);
-            (
-                factor,
-                outcome.converged && shift <= self.settings.newton_tolerance * scale,
-            )
-        } else {
-            (1.0, false)
-        };
+        let converges = settings.minimizer.converges();
+        let energy = EnergyTest::new(
+            (system, terms),
+            &step,
+            (&work.x, &work.iterates.v),
+            converges && !two_step,
+            (outcome.converged, settings.newton_tolerance),
+        );
         report.newton_iterations += outcome.iterations;
         report.newton_iterations_max = report.newton_iterations_max.max(outcome.iterations);
-        let error = self.settings.error_control.and_then(|control| {
-            let order = if two_step { 2 } else { 1 };
-            let earlier = self.earlier.unwrap_or(f64::NAN);
-            let past = [(&x_prev[..], previous?), (&x_earlier[..], earlier)];
-            let known = if self.earlier.is_some() { 2 } else { 1 };
-            control
-                .error(two_step, h, (x0, x), &past[..known])
-                .map(|err| (err, order))
+        let error = settings.error_control.and_then(|control| {
+            let past = [
+                (&work.x_prev[..], previous),
+                (&work.x_earlier[..], self.earlier),
+            ];
+            control.estimate(two_step, h, (step.x, &work.x), past)
         });
         let too_large = error.is_some_and(|(err, _)| err > 1.0);
-        if !linearized
-            && !at_floor
-            && (!outcome.converged || (tested && excess > 0.0 && !within_tolerance) || too_large)
-        {
+        if converges && !at_floor && (!outcome.converged || energy.fails() || too_large) {
             self.history = saved_history;
             return Ok(Outcome::Rejected { error });
         }
-        report.newton_residual = report.newton_residual.max(outcome.residual);
-        if !outcome.converged {
-            if strict {
-                return Err(StepError::NoConvergence {
-                    time,
-                    iterations: outcome.iterations,
-                    residual: outcome.residual,
-                });
-            }
-            report.unconverged_steps += 1;
-        }
-        if excess > 0.0 {
-            report.energy_excess = report.energy_excess.max(excess);
-            if tested {
-                // The kinetic energy absorbs the gain: within the Newton
-                // tolerance, or at the floor as the last resort (all of
-                // the kinetic energy, if the gain is as large).
-                for_each_row(v, |i, v| {
-                    if !system.is_pinned(i) {
-                        *v *= factor;
-                    }
-                });
-                if !within_tolerance {
-                    report.energy_corrections += 1;
-                }
-            }
-        }
-        let touching = terms.end_step(system, x);
-        state.commit(x, v, end.unwrap_or(time + h))?;
-        // The buffers swapped out of the state hold xₙ, vₙ: BDF2's next
-        // history, after xₙ₋₁ moves to the error estimate's.
-        if previous.is_some() {
-            std::mem::swap(x_earlier, x_prev);
-        }
-        self.earlier = previous;
-        std::mem::swap(x_prev, x);
-        std::mem::swap(v_prev, v);
-        self.history.record(system, state, h);
-        report.accepted_steps += 1;
+        let strict = settings.strict.then_some(step.time);
+        account(
+            system,
+            (outcome, energy),
+            strict,
+            &mut work.iterates.v,
+            report,
+        )?;
+        let touching = terms.end_step(system, &work.x);
+        self.commit(system, state, (h, end, previous), report)?;
         // The pairs within the contact distance, and the particles the end
         // of the step pushes out of an obstacle (none, as no iterate
         // crosses one).
         report.contacts = touching + system.end_step(state);
         Ok(Outcome::Accepted {
-            easy: 3 * outcome.iterations <= self.settings.newton_iterations,
+            easy: 3 * outcome.iterations <= settings.newton_iterations,
             error,
         })
     }
+
+    /// Commits an accepted step of `h` (after one of `previous`) to
+    /// `state` at `end` (or `t + h`): the step's end from the work buffers,
+    /// the history moved on for BDF2 and the error estimates.
+    ///
+    /// # Errors
+    /// [`StepError`] from [`State::commit`] for a step that is not finite.
+    fn commit(
+        &mut self,
+        system: &System,
+        state: &mut State,
+        (h, end, previous): (f64, Option<f64>, Option<f64>),
+        report: &mut StepReport,
+    ) -> Result<(), StepError> {
+        let work = &mut self.work;
+        let (x, v) = (&mut work.x, &mut work.iterates.v);
+        state.commit(x, v, end.unwrap_or(state.time() + h))?;
+        // The buffers swapped out of the state hold xₙ, vₙ: BDF2's next
+        // history, after xₙ₋₁ moves to the error estimate's.
+        if previous.is_some() {
+            std::mem::swap(&mut work.x_earlier, &mut work.x_prev);
+        }
+        self.earlier = previous;
+        std::mem::swap(&mut work.x_prev, x);
+        std::mem::swap(&mut work.v_prev, v);
+        self.history.record(system, state, h);
+        report.accepted_steps += 1;
+        Ok(())
+    }
+}
+
+/// Accounts an accepted step in `report`: the minimisation's residual, a
+/// step accepted unconverged (an error in strict mode, `strict` holding
+/// the step's time), and
+/// a gain in energy, which the kinetic energy absorbs where the step is
+/// held to the energy test — within the stopping rule's tolerance, or at
+/// the floor as the last resort (all of the kinetic energy, if the gain is
+/// as large) — by scaling the free particles' velocities `v`.
+///
+/// # Errors
+/// [`StepError::NoConvergence`] in strict mode for a step that did not
+/// converge.
+fn account(
+    system: &System,
+    (outcome, energy): (Minimized, EnergyTest),
+    strict: Option<f64>,
+    v: &mut [Vec3],
+    report: &mut StepReport,
+) -> Result<(), StepError> {
+    report.newton_residual = report.newton_residual.max(outcome.residual);
+    if !outcome.converged {
+        if let Some(time) = strict {
+            return Err(StepError::NoConvergence {
+                time,
+                iterations: outcome.iterations,
+                residual: outcome.residual,
+            });
+        }
+        report.unconverged_steps += 1;
+    }
+    if energy.excess > 0.0 {
+        report.energy_excess = report.energy_excess.max(energy.excess);
+        if energy.held {
+            for_each_row(v, |i, v| {
+                if !system.is_pinned(i) {
+                    *v *= energy.factor;
+                }
+            });
+            if !energy.within_tolerance {
+                report.energy_corrections += 1;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The linear solver's topology for `system` under `settings`
+/// ([`topology`]): the solver's matrix, filters and factor or hierarchy
+/// for a minimiser that assembles Newton's matrix, the springs' pattern
+/// alone for one that does not.
+///
+/// # Errors
+/// [`StepError::SystemTooLarge`] and factorization errors.
+fn topology_for<'t>(
+    cached: &'t mut Option<Topology>,
+    settings: &ImplicitSettings,
+    (system, terms): (&System, &Terms),
+) -> Result<&'t mut Topology, StepError> {
+    let solver = settings.minimizer.assembles().then_some(settings.solver);
+    let factoring = (settings.weak_springs_used(), settings.supernodes);
+    topology(
+        cached,
+        solver,
+        (settings.amg_renewal, factoring),
+        (system, terms.pattern()),
+    )
+}
+
+/// Minimises the (sub)step's `Φ` from its starting candidates `start` by
+/// the minimiser the settings name
+/// ([`Minimizer::minimize`](crate::Minimizer::minimize)), with the
+/// step's linear solver on `topology`, and leaves the step's end
+/// `x = x̃ + βh v` in the work's positions, `v` in its iterate.
+///
+/// # Errors
+/// Assembly, factorization and solver errors.
+fn minimize(
+    (settings, kept): (&ImplicitSettings, &mut Kept),
+    (system, terms): (&System, &mut Terms),
+    (step, start): (&StepStart<'_>, Start),
+    topology: &mut Topology,
+    work: &mut Work,
+    report: &mut StepReport,
+) -> Result<Minimized, StepError> {
+    let linear = Linear {
+        solve: Solve::new(system, settings.strict, step.time),
+        topology,
+        pcg: &mut work.pcg,
+        b: &mut work.b,
+        report,
+    };
+    let Predictor {
+        x_tilde,
+        v_tilde,
+        u,
+    } = &mut work.predictor;
+    // The displacement `u` served the linearised solve only: its buffer
+    // is the minimisation's motion scratch.
+    let mut phi = Objective {
+        system,
+        terms,
+        x_tilde,
+        v_tilde,
+        beta_h: step.beta_h,
+        compressed: settings.compressed,
+        x: &mut work.x,
+        motion: u,
+    };
+    let rules = Rules {
+        iterations: settings.newton_iterations,
+        tolerance: settings.newton_tolerance,
+        inexact: settings.inexact_newton,
+        solver: settings.solver,
+        weak_springs: settings.weak_springs_used(),
+    };
+    let it = &mut work.iterates;
+    let outcome =
+        settings
+            .minimizer
+            .minimize(rules, kept, &mut phi, linear, it, (step.v, start))?;
+    let (v, beta_h) = (&it.v, step.beta_h);
+    for_each_row(&mut work.x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
+    Ok(outcome)
 }

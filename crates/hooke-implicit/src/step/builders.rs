@@ -5,10 +5,11 @@ use hooke_core::{CompressedSprings, ParameterError};
 
 use crate::linear::cholesky::{Supernodes, WeakSprings};
 use crate::linear::solver::{AmgRenewal, LinearSolver};
+use crate::minimize::minimizer::Minimizer;
 use crate::step::comparison::Comparison;
 use crate::step::error_control::ErrorControl;
 use crate::step::implicit::Implicit;
-use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::scheme::Scheme;
 use crate::step::settings::ImplicitSettings;
 
 impl Implicit {
@@ -227,15 +228,5 @@ impl Implicit {
     #[must_use]
     pub fn settings(&self) -> &ImplicitSettings {
         &self.settings
-    }
-
-    /// The linear solver whose topology a step uses; none for the
-    /// quasi-Newton step, which solves with its own `H₀` and reads the
-    /// springs' pattern only (no matrix, factor or hierarchy).
-    pub(crate) fn solver_for_topology(&self) -> Option<LinearSolver> {
-        match self.settings.minimizer {
-            Minimizer::QuasiNewton { .. } => None,
-            _ => Some(self.settings.solver),
-        }
     }
 }

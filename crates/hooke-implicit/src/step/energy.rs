@@ -50,10 +50,71 @@
 //! The step is then taken with its velocities so scaled: it gains nothing,
 //! and it is as close to the exact step as any converged one.
 
-use hooke_core::{System, Vec3};
+use hooke_core::{StepStart, System, Vec3, When};
+
+use crate::minimize::objective::velocity_scale;
+use crate::minimize::terms::Terms;
+
+/// The energy test of a step: its gain and how the kinetic energy would
+/// absorb it (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct EnergyTest {
+    /// `E(xₙ₊₁, vₙ₊₁) − E(xₙ, vₙ) − W` beyond the rounding; a gain where
+    /// positive.
+    pub(crate) excess: f64,
+    /// Whether the step is held to the test: converged backward-Euler
+    /// steps are, BDF2's two-step steps and the linearised step only
+    /// report a gain.
+    pub(crate) held: bool,
+    /// The factor `s` on the free particles' velocities that absorbs a
+    /// gain (1 without one).
+    pub(crate) factor: f64,
+    /// Whether that scaling moves the velocities by no more than the
+    /// stopping rule's tolerance of their scale, in a converged step.
+    pub(crate) within_tolerance: bool,
+}
+
+impl EnergyTest {
+    /// Tests the step of `system` from `step` to `(x, v)` by its `terms`'
+    /// energies and work; `held` as [`EnergyTest::held`], `converged`
+    /// whether the minimisation met the stopping rule with tolerance
+    /// `tolerance`.
+    pub(crate) fn new(
+        (system, terms): (&System, &mut Terms),
+        step: &StepStart<'_>,
+        (x, v): (&[Vec3], &[Vec3]),
+        held: bool,
+        (converged, tolerance): (bool, f64),
+    ) -> Self {
+        let before = terms.energy(system, step.x, step.v, When::Start);
+        let after = terms.energy(system, x, v, When::End);
+        let work = terms.work(system, step, x, v);
+        let excess =
+            after.value - before.value - work - rounding(before.magnitude.max(after.magnitude));
+        let (factor, within_tolerance) = if excess > 0.0 {
+            let (factor, shift) = absorption(system, v, excess);
+            let scale = velocity_scale(system, v.iter().copied(), step.v, step.beta_h);
+            (factor, converged && shift <= tolerance * scale)
+        } else {
+            (1.0, false)
+        };
+        Self {
+            excess,
+            held,
+            factor,
+            within_tolerance,
+        }
+    }
+
+    /// Whether the step fails the test: held to it and gaining energy that
+    /// the kinetic energy does not absorb within the tolerance.
+    pub(crate) fn fails(&self) -> bool {
+        self.held && self.excess > 0.0 && !self.within_tolerance
+    }
+}
 
 /// The largest gain `E(x₁, v₁) − E(x₀, v₀)` a step may show from rounding.
-pub(crate) fn rounding(magnitude: f64) -> f64 {
+fn rounding(magnitude: f64) -> f64 {
     1e3 * f64::EPSILON * magnitude
 }
 
@@ -62,7 +123,7 @@ pub(crate) fn rounding(magnitude: f64) -> f64 {
 /// velocities, and how far that moves them in the mass norm,
 /// `‖(1 − s) v‖_M = (1 − s)√(2K)` — infinite where `K < ΔE`, which no
 /// scaling absorbs.
-pub(crate) fn absorption(system: &System, v: &[Vec3], excess: f64) -> (f64, f64) {
+fn absorption(system: &System, v: &[Vec3], excess: f64) -> (f64, f64) {
     if excess <= 0.0 {
         return (1.0, 0.0);
     }

@@ -87,6 +87,29 @@ impl ErrorControl {
         self.absolute
     }
 
+    /// The error `err` of a step of size `h` from `x0` to `x1` and the order
+    /// of the estimate (2 for BDF2's `two_step` steps, 1 otherwise), from
+    /// the positions `xₙ₋₁`, `xₙ₋₂` and sizes `hₙ`, `hₙ₋₁` of the steps
+    /// before, as far as they are known ([`ErrorControl::error`]); `None`
+    /// without the step before.
+    pub(crate) fn estimate(
+        &self,
+        two_step: bool,
+        h: f64,
+        (x0, x1): (&[Vec3], &[Vec3]),
+        past: [(&[Vec3], Option<f64>); 2],
+    ) -> Option<(f64, u32)> {
+        let [(x_prev, previous), (x_earlier, earlier)] = past;
+        let known = [
+            (x_prev, previous?),
+            (x_earlier, earlier.unwrap_or(f64::NAN)),
+        ];
+        let count = if earlier.is_some() { 2 } else { 1 };
+        let order = if two_step { 2 } else { 1 };
+        self.error(two_step, h, (x0, x1), &known[..count])
+            .map(|err| (err, order))
+    }
+
     /// The error `err` of a step from `x0` to `x1` of size `h` (see the
     /// module docs); `past` holds the positions and sizes of the steps
     /// before, most recent first (`xₙ₋₁, hₙ` then `xₙ₋₂, hₙ₋₁`). `None`

@@ -3,7 +3,7 @@
 use hooke_core::{History, ParameterError};
 
 use crate::linear::solver::topology::Topology;
-use crate::minimize::quasi_newton::QuasiNewton;
+use crate::minimize::minimizer::Kept;
 use crate::minimize::terms::Terms;
 use crate::step::comparison::Comparison;
 use crate::step::conditioning::LongestStep;
@@ -39,7 +39,7 @@ use crate::step::work::Work;
 /// positive part) where it is not, so that every step descends. Every iterate, the first one included, is
 /// accepted only through a line search that decreases `Φ` (Armijo,
 /// extended with a watchdog step and extrapolation; see the
-/// `newton` module). It stops when the Newton decrement `λ = √(δᵀAδ)`,
+/// `line_search` module). It stops when the Newton decrement `λ = √(δᵀAδ)`,
 /// which bounds the velocity error in the mass norm and whose square
 /// halved estimates how far `Φ` is above its minimum, is small against the
 /// step's velocity scale,
@@ -49,8 +49,8 @@ use crate::step::work::Work;
 /// ```
 ///
 /// a rule without units that means the same at 10⁻² and 10¹² N/m or in a
-/// millimetre scene (default `ε` = [`Implicit::NEWTON_TOLERANCE`], cap
-/// [`Implicit::NEWTON_ITERATIONS`] linear solves; [`Implicit::with_newton`]),
+/// millimetre scene (default `ε` = [`ImplicitSettings::NEWTON_TOLERANCE`], cap
+/// [`ImplicitSettings::NEWTON_ITERATIONS`] linear solves; [`Implicit::with_newton`]),
 /// or when a full Newton step would lower `Φ` by less than the rounding of
 /// `Φ` itself — the precision floor that springs of 10¹² N/m reach, whose
 /// forces carry `k` times the rounding of their ends' coordinates.
@@ -86,7 +86,7 @@ use crate::step::work::Work;
 /// dissipation's `h` (the `energy` module). A step that fails the test
 /// otherwise, or whose Newton iteration does not converge within its cap,
 /// is rejected and retried as two substeps of half the size, down to a floor
-/// of `h / 2^k` (`k` = [`Implicit::MAX_HALVINGS`],
+/// of `h / 2^k` (`k` = [`ImplicitSettings::MAX_HALVINGS`],
 /// [`Implicit::with_max_halvings`]); after a substep whose Newton iteration
 /// took at most a third of its cap, the size doubles again, up to the step
 /// the caller asked for, which is always delivered whole. BDF2 keeps its
@@ -188,7 +188,8 @@ pub struct Implicit {
     /// The terms of the last system stepped.
     pub(crate) terms: Option<Terms>,
     pub(crate) pins: Pins,
-    pub(crate) quasi: QuasiNewton,
+    /// What the minimisers keep from one (sub)step to the next.
+    pub(crate) kept: Kept,
     pub(crate) work: Work,
 }
 
@@ -208,38 +209,6 @@ impl Implicit {
         Self::new(Scheme::Bdf2)
     }
 
-    /// The default cap on Newton's linear solves per (sub)step
-    /// ([`ImplicitSettings::newton_iterations`]). Stiff
-    /// cloth swinging through large angles needs tens of them: at 10⁸ N/m
-    /// and 0.1 s steps a 24×24 cloth takes 50–100.
-    pub const NEWTON_ITERATIONS: usize = 100;
-    /// The default relative Newton tolerance `ε`
-    /// ([`ImplicitSettings::newton_tolerance`]; a relative error of the
-    /// velocities in the mass norm; `Φ` then lies about `ε²` times twice the
-    /// kinetic-energy scale above its minimum), chosen from the
-    /// `work_precision` bench (`benches/README.md`): the loosest Newton
-    /// tolerance whose error on its 50 × 50 cloth stays within 1 cm. There,
-    /// 30 steps at 1/60 s end 4.5–6.9 mm from the converged run at
-    /// `5·10⁻³` (3.1 iterations a step), 7–12 mm at `10⁻²`, 1.3 mm at `10⁻⁴`
-    /// (6.6 iterations, twice the time). Tighter does not buy
-    /// proportionally more: the cloth buckles, and a run converged to
-    /// `10⁻⁶` lies up to 2.3 mm (50 × 50) and 12 mm (100 × 100) from one
-    /// converged to `10⁻⁹` during the 30 steps, as far as `5·10⁻³` does
-    /// on the larger cloth.
-    /// On the default scene at 1/60 s a step then takes 14 iterations on
-    /// average instead of 25. Every step still passes the energy test (a
-    /// gain is absorbed only by moving the velocities less than `ε` of
-    /// their scale), and the extreme-stiffness guarantees of
-    /// `tests/implicit_robust.rs` hold at this default. Where buckling
-    /// cloth makes the exact Hessian indefinite, Newton with clamped
-    /// compressed springs converges only linearly, so much tighter
-    /// tolerances cost many iterations: a step of a 100×100 cloth swinging
-    /// from two pins took 118 Newton iterations to reach `10⁻⁶` against 8
-    /// to reach `10⁻⁴`.
-    pub const NEWTON_TOLERANCE: f64 = 5e-3;
-    /// The default number of halvings a step may be cut by
-    /// ([`ImplicitSettings::max_halvings`]).
-    pub const MAX_HALVINGS: u32 = 10;
     /// The largest condition number `κ(h) = 1 + βhζ + β²h²ω²` of a step's
     /// matrix relative to the mass matrix (`ω²`, `ζ`: Gershgorin bounds of
     /// the stiffness and damping rates) at which a step is taken whole;
@@ -292,7 +261,7 @@ impl Implicit {
             longest: LongestStep::default(),
             terms: None,
             pins: Pins::default(),
-            quasi: QuasiNewton::default(),
+            kept: Kept::default(),
             work: Work::default(),
         }
     }

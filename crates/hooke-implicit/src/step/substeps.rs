@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use hooke_core::{Integrator, Named, State, StepError, StepReport, System, Vec3, check_step};
+use hooke_core::{Integrator, Named, State, StepError, StepReport, System, check_step};
 
 use crate::minimize::terms::Terms;
 use crate::step::attempt::Outcome;
@@ -18,39 +18,20 @@ impl Integrator for Implicit {
         dt: f64,
     ) -> Result<StepReport, StepError> {
         check_step(system, state, dt)?;
-        let linearized = self.is_linearized();
+        let converges = self.settings.minimizer.converges();
         let terms = Terms::of(&mut self.terms, system)?;
         terms.push_out(system, state);
         let clock = Instant::now();
         let n = state.len();
         let w = &mut self.work;
-        for buffer in [
-            &mut w.b,
-            &mut w.dv,
-            &mut w.delta,
-            &mut w.v,
-            &mut w.x,
-            &mut w.trial,
-            &mut w.ahead,
-            &mut w.look,
-            &mut w.x_tilde,
-            &mut w.v_tilde,
-            &mut w.u,
-            &mut w.x_prev,
-            &mut w.v_prev,
-            &mut w.x_earlier,
-            &mut w.x_start,
-            &mut w.v_start,
-        ] {
-            buffer.resize(n, Vec3::zeros());
-        }
+        w.resize(n);
         w.x_start.copy_from_slice(state.positions());
         w.v_start.copy_from_slice(state.velocities());
         let (start, end) = (state.time(), state.time() + dt);
-        let longest = if linearized {
-            f64::INFINITY
-        } else {
+        let longest = if converges {
             self.longest.get(system, terms, Self::MAX_CONDITION)
+        } else {
+            f64::INFINITY
         };
         let floor = (dt / f64::from(self.settings.max_halvings).exp2()).min(longest);
         let mut h = self.substep.min(dt).min(longest);
@@ -74,7 +55,7 @@ impl Integrator for Implicit {
             } else {
                 h
             };
-            let at_floor = self.is_linearized() || size <= floor * (1.0 + 1e-12);
+            let at_floor = !converges || size <= floor * (1.0 + 1e-12);
             let outcome = self.attempt(
                 system,
                 state,

@@ -61,7 +61,7 @@ impl StepVariant {
     pub fn defaults() -> Vec<Self> {
         vec![
             Self::Newton(1e-2),
-            Self::Newton(hooke_implicit::Implicit::NEWTON_TOLERANCE),
+            Self::Newton(ImplicitSettings::NEWTON_TOLERANCE),
             Self::QuasiNewton(1e-2),
             Self::QuasiNewton(1e-3),
             Self::Linearized,

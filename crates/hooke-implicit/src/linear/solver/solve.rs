@@ -40,7 +40,18 @@ pub(crate) struct Solve<'a> {
     pub(crate) forcing: f64,
 }
 
-impl Solve<'_> {
+impl<'a> Solve<'a> {
+    /// The solves of a step of `system` at `time`, `strict` as the
+    /// integrator is, with no forcing term yet.
+    pub(crate) fn new(system: &'a System, strict: bool, time: f64) -> Self {
+        Self {
+            system,
+            strict,
+            time,
+            forcing: 0.0,
+        }
+    }
+
     /// Solves the filtered system `S A x = S b` last assembled (and amended)
     /// at `positions` into `x` (a warm start on entry), recording the solve
     /// and the force evaluation of its assembly in `report`.

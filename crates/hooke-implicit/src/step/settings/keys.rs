@@ -18,7 +18,7 @@ use thiserror::Error;
 use super::ImplicitSettings;
 use crate::linear::cg::PcgSettings;
 use crate::linear::solver::LinearSolver;
-use crate::step::scheme::Minimizer;
+use crate::minimize::minimizer::Minimizer;
 
 /// A key's value as a scene file, a report or a keyword argument gives
 /// it.
@@ -144,19 +144,17 @@ impl Named for Key {
     ];
 }
 
-/// Where a key means anything: to the solvers and to the steps listed
-/// (every solver, or every step, where none is listed), both or either
-/// (see [`Key::scope`]).
+/// Where a key means anything: to the solvers listed (every solver where
+/// none is) and to the steps with a property (every step where none is
+/// given), both or either (see [`Key::scope`]).
 struct Scope {
     solvers: &'static [LinearSolver],
-    steps: &'static [Minimizer],
+    steps: Option<fn(Minimizer) -> bool>,
     either: bool,
 }
 
 /// The solvers that factor Newton's matrix.
 const FACTORED: &[LinearSolver] = &[LinearSolver::Auto, LinearSolver::Cholesky];
-/// The steps that assemble Newton's matrix.
-const ASSEMBLED: &[Minimizer] = &[Minimizer::Newton, Minimizer::Linearized];
 /// The PCG iterations.
 const ITERATIVE: &[LinearSolver] = &[
     LinearSolver::Pcg(PcgSettings::DEFAULT),
@@ -165,8 +163,12 @@ const ITERATIVE: &[LinearSolver] = &[
 ];
 /// The solvers that may run multigrid on Newton's matrix.
 const MULTIGRID: &[LinearSolver] = &[LinearSolver::Auto, LinearSolver::Amg(PcgSettings::DEFAULT)];
-/// The quasi-Newton step.
-const QUASI_NEWTON: &[Minimizer] = &[Minimizer::quasi_newton()];
+/// The steps that assemble Newton's matrix.
+const ASSEMBLED: Option<fn(Minimizer) -> bool> = Some(Minimizer::assembles);
+/// The steps that keep an L-BFGS history.
+const HISTORY: Option<fn(Minimizer) -> bool> = Some(|m| m.history().is_some());
+/// Newton's method.
+const NEWTON: Option<fn(Minimizer) -> bool> = Some(|m| m == Minimizer::Newton);
 
 impl Key {
     /// Where the key means anything, `None` for everywhere: PCG's keys to
@@ -177,12 +179,12 @@ impl Key {
     /// springs' clamp to the steps that assemble the spring Hessian.
     fn scope(self) -> Option<Scope> {
         let (solvers, steps, either) = match self {
-            Self::Tolerance | Self::MaxIterations => (ITERATIVE, &[][..], false),
-            Self::History | Self::CarriedPairs => (&[][..], QUASI_NEWTON, false),
-            Self::WeakSprings => (FACTORED, QUASI_NEWTON, true),
+            Self::Tolerance | Self::MaxIterations => (ITERATIVE, None, false),
+            Self::History | Self::CarriedPairs => (&[][..], HISTORY, false),
+            Self::WeakSprings => (FACTORED, HISTORY, true),
             Self::Supernodes => (FACTORED, ASSEMBLED, false),
             Self::AmgRenewal => (MULTIGRID, ASSEMBLED, false),
-            Self::InexactNewton => (&[][..], &[Minimizer::Newton][..], false),
+            Self::InexactNewton => (&[][..], NEWTON, false),
             Self::CompressedSprings => (&[][..], ASSEMBLED, false),
             _ => return None,
         };
@@ -210,7 +212,7 @@ impl Key {
             return Ok(());
         };
         let solver = scope.solvers.is_empty() || of_kind(scope.solvers, &s.solver);
-        let step = scope.steps.is_empty() || of_kind(scope.steps, &s.minimizer);
+        let step = scope.steps.is_none_or(|of| of(s.minimizer));
         if (scope.either && (solver || step)) || (solver && step) {
             return Ok(());
         }
@@ -220,10 +222,13 @@ impl Key {
             let names = scope.solvers.iter().map(|&v| v.name());
             wanted.push(format!("solver {}", quoted_list(names)));
         }
-        if !scope.steps.is_empty() {
+        if let Some(of) = scope.steps {
             found.push(format!("step = \"{}\"", s.minimizer.name()));
-            let names = scope.steps.iter().map(|&v| v.name());
-            wanted.push(format!("step = {}", quoted_list(names)));
+            let steps = Minimizer::TABLE.iter().filter(|&&(m, _)| of(m));
+            wanted.push(format!(
+                "step = {}",
+                quoted_list(steps.map(|&(_, name)| name))
+            ));
         }
         let key = self.name();
         let join = if scope.either { ", or with " } else { " and " };
@@ -276,10 +281,7 @@ impl ImplicitSettings {
     /// tolerances without error control).
     fn value(&self, key: Key) -> Option<KeyValue<'static>> {
         let count = |n: usize| KeyValue::Count(n as u64);
-        let history = match self.minimizer {
-            Minimizer::QuasiNewton { history, carried } => Some((history, carried)),
-            Minimizer::Newton | Minimizer::Linearized => None,
-        };
+        let history = self.minimizer.history();
         let pcg = self.solver.pcg();
         Some(match key {
             Key::Scheme => KeyValue::Name(self.scheme.name()),

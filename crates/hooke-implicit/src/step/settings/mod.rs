@@ -12,16 +12,16 @@ use hooke_core::{CompressedSprings, Named, Parameter, ParameterError};
 
 use crate::linear::cholesky::{Supernodes, WeakSprings};
 use crate::linear::solver::{AmgRenewal, LinearSolver};
+use crate::minimize::minimizer::Minimizer;
 use crate::step::error_control::ErrorControl;
-use crate::step::implicit::Implicit;
-use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::scheme::Scheme;
 
-/// The settings of an [`Implicit`] integrator: the scheme, the minimiser
+/// The settings of an [`Implicit`](crate::Implicit) integrator: the scheme, the minimiser
 /// and its stopping rule, the linear solver and how it factors or renews
 /// what it keeps, the substeps' limits and the error control. Plain data:
 /// every field is public, [`ImplicitSettings::default`] gives the
 /// library's defaults, and [`ImplicitSettings::validate`] checks the
-/// ranges [`Implicit::with_settings`] needs.
+/// ranges [`Implicit::with_settings`](crate::Implicit::with_settings) needs.
 ///
 /// Scene files set these fields by the keys of their `[integrator]` table,
 /// and `summary.json` reports them by the same keys
@@ -62,12 +62,12 @@ pub struct ImplicitSettings {
     pub minimizer: Minimizer,
     /// The cap on linear solves (Newton or L-BFGS iterations) per
     /// (sub)step; a (sub)step that does not converge within it is rejected
-    /// and retried in halves. Default [`Implicit::NEWTON_ITERATIONS`]
+    /// and retried in halves. Default [`ImplicitSettings::NEWTON_ITERATIONS`]
     /// (100); at least 1.
     pub newton_iterations: usize,
     /// The relative tolerance `ε` on the Newton decrement that stops the
-    /// iteration (the stopping rule of [`Implicit`]). Default
-    /// [`Implicit::NEWTON_TOLERANCE`] (`5·10⁻³`); positive and finite.
+    /// iteration (the stopping rule of [`Implicit`](crate::Implicit)). Default
+    /// [`ImplicitSettings::NEWTON_TOLERANCE`] (`5·10⁻³`); positive and finite.
     pub newton_tolerance: f64,
     /// Whether an iterative linear solver may stop a Newton step's solve at
     /// the forcing term `η = min(0.1, ½ λ_rel)` of the last relative
@@ -92,7 +92,7 @@ pub struct ImplicitSettings {
     pub supernodes: Supernodes,
     /// How often a rejected (sub)step may be cut in half: the floor is
     /// `h / 2^max_halvings`, where a step is accepted as it is and counted
-    /// as unconverged. Default [`Implicit::MAX_HALVINGS`] (10); any, 0
+    /// as unconverged. Default [`ImplicitSettings::MAX_HALVINGS`] (10); any, 0
     /// accepting every step as it comes.
     pub max_halvings: u32,
     /// Whether a linear solve stopped at its iteration cap, or a step
@@ -116,22 +116,22 @@ pub struct ImplicitSettings {
 
 impl Default for ImplicitSettings {
     /// Backward Euler, the automatic solver choice, converged inexact
-    /// Newton steps at [`Implicit::NEWTON_ITERATIONS`] and
-    /// [`Implicit::NEWTON_TOLERANCE`], rejected steps halved at most
-    /// [`Implicit::MAX_HALVINGS`] times, not strict, clamped compressed
+    /// Newton steps at [`ImplicitSettings::NEWTON_ITERATIONS`] and
+    /// [`ImplicitSettings::NEWTON_TOLERANCE`], rejected steps halved at most
+    /// [`ImplicitSettings::MAX_HALVINGS`] times, not strict, clamped compressed
     /// springs, fixed substeps; every enum at its own default.
     fn default() -> Self {
         Self {
             scheme: Scheme::default(),
             solver: LinearSolver::default(),
             minimizer: Minimizer::default(),
-            newton_iterations: Implicit::NEWTON_ITERATIONS,
-            newton_tolerance: Implicit::NEWTON_TOLERANCE,
+            newton_iterations: Self::NEWTON_ITERATIONS,
+            newton_tolerance: Self::NEWTON_TOLERANCE,
             inexact_newton: true,
             amg_renewal: AmgRenewal::default(),
             weak_springs: None,
             supernodes: Supernodes::default(),
-            max_halvings: Implicit::MAX_HALVINGS,
+            max_halvings: Self::MAX_HALVINGS,
             strict: false,
             compressed: CompressedSprings::default(),
             error_control: None,
@@ -140,6 +140,39 @@ impl Default for ImplicitSettings {
 }
 
 impl ImplicitSettings {
+    /// The default cap on Newton's linear solves per (sub)step
+    /// ([`ImplicitSettings::newton_iterations`]). Stiff
+    /// cloth swinging through large angles needs tens of them: at 10⁸ N/m
+    /// and 0.1 s steps a 24×24 cloth takes 50–100.
+    pub const NEWTON_ITERATIONS: usize = 100;
+    /// The default relative Newton tolerance `ε`
+    /// ([`ImplicitSettings::newton_tolerance`]; a relative error of the
+    /// velocities in the mass norm; `Φ` then lies about `ε²` times twice the
+    /// kinetic-energy scale above its minimum), chosen from the
+    /// `work_precision` bench (`benches/README.md`): the loosest Newton
+    /// tolerance whose error on its 50 × 50 cloth stays within 1 cm. There,
+    /// 30 steps at 1/60 s end 4.5–6.9 mm from the converged run at
+    /// `5·10⁻³` (3.1 iterations a step), 7–12 mm at `10⁻²`, 1.3 mm at `10⁻⁴`
+    /// (6.6 iterations, twice the time). Tighter does not buy
+    /// proportionally more: the cloth buckles, and a run converged to
+    /// `10⁻⁶` lies up to 2.3 mm (50 × 50) and 12 mm (100 × 100) from one
+    /// converged to `10⁻⁹` during the 30 steps, as far as `5·10⁻³` does
+    /// on the larger cloth.
+    /// On the default scene at 1/60 s a step then takes 14 iterations on
+    /// average instead of 25. Every step still passes the energy test (a
+    /// gain is absorbed only by moving the velocities less than `ε` of
+    /// their scale), and the extreme-stiffness guarantees of
+    /// `tests/implicit_robust.rs` hold at this default. Where buckling
+    /// cloth makes the exact Hessian indefinite, Newton with clamped
+    /// compressed springs converges only linearly, so much tighter
+    /// tolerances cost many iterations: a step of a 100×100 cloth swinging
+    /// from two pins took 118 Newton iterations to reach `10⁻⁶` against 8
+    /// to reach `10⁻⁴`.
+    pub const NEWTON_TOLERANCE: f64 = 5e-3;
+    /// The default number of halvings a step may be cut by
+    /// ([`ImplicitSettings::max_halvings`]).
+    pub const MAX_HALVINGS: u32 = 10;
+
     /// Checks the fields whose range is narrower than their type's:
     /// [`ImplicitSettings::newton_iterations`] at least 1 and
     /// [`ImplicitSettings::newton_tolerance`] positive and finite. (The
@@ -198,9 +231,7 @@ impl ImplicitSettings {
     /// ```
     #[must_use]
     pub fn weak_springs_used(&self) -> WeakSprings {
-        self.weak_springs.unwrap_or(match self.minimizer {
-            Minimizer::QuasiNewton { .. } => WeakSprings::Routed,
-            Minimizer::Newton | Minimizer::Linearized => WeakSprings::Kept,
-        })
+        self.weak_springs
+            .unwrap_or_else(|| self.minimizer.weak_springs())
     }
 }

@@ -8,8 +8,9 @@ use super::keys::{Key, KeyError, KeyValue};
 use crate::linear::cg::PcgSettings;
 use crate::linear::cholesky::{Supernodes, WeakSprings};
 use crate::linear::solver::{AmgRenewal, LinearSolver};
+use crate::minimize::minimizer::Minimizer;
 use crate::step::error_control::ErrorControl;
-use crate::step::scheme::{Minimizer, Scheme};
+use crate::step::scheme::Scheme;
 
 impl ImplicitSettings {
     /// The settings the keys `keys` give, each key its value, every other

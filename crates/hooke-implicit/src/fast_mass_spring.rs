@@ -1,13 +1,23 @@
 //! [`FastMassSpring`]: Liu, Bargteil, O'Brien & Kavan, *Fast Simulation of
 //! Mass-Spring Systems* (SIGGRAPH Asia 2013) — backward Euler by
 //! local/global iterations on a constant, prefactored matrix.
+//!
+//! It is an integrator of its own beside [`Implicit`](crate::Implicit),
+//! not a minimiser of the implicit step's `Φ`: it minimises its own
+//! objective over the positions, split into a constant quadratic and a
+//! projection per spring, for a fixed number of iterations without a line
+//! search, a stopping rule, an energy test or substeps, and resolves
+//! contacts after the step as the explicit methods do — the paper's method
+//! as published, which the lab measures against the implicit step. Inside
+//! the implicit step its matrix is the quasi-Newton minimiser's initial
+//! Hessian ([`Minimizer::QuasiNewton`](crate::Minimizer::QuasiNewton)).
 
 use hooke_core::{
     Integrator, Named, Parameter, ParameterError, State, StepBuffers, StepError, StepReport,
     System, Vec3,
 };
 
-use crate::WeakSprings;
+use crate::linear::cholesky::WeakSprings;
 use crate::linear::laplacian::{Inverse, Laplacian};
 use crate::linear::solver::LinearSolver;
 
