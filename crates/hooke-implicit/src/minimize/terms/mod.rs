@@ -8,6 +8,8 @@
 mod air_damping;
 mod assemble;
 mod contact;
+#[cfg(test)]
+mod derivatives;
 mod gravity;
 mod inertia;
 mod springs;
