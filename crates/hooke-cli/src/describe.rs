@@ -13,7 +13,8 @@ use crate::runner::check_timing;
 /// bodies with what each draws and its volume elements with their modulus
 /// (see `hooke_scenes::Volume`), its obstacles, its collision surfaces (how
 /// many collide with themselves, their thickness and the contact
-/// distance), the integrator with its parameters (an implicit one's
+/// distance), the system's own terms by name (a wind; see
+/// `hooke_core::System::terms`), the integrator with its parameters (an implicit one's
 /// settings also as the scene file's keys, every default included) and
 /// the timing with the number of steps and frames.
 ///
@@ -84,6 +85,10 @@ pub fn describe(scene: &Scene) -> Result<String, CliError> {
     }
     if let Some(surfaces) = surfaces_line(system) {
         line("surfaces", surfaces);
+    }
+    if !system.terms().is_empty() {
+        let names: Vec<&str> = system.terms().iter().map(|t| t.name()).collect();
+        line("terms", names.join(", "));
     }
     line(
         "integrator",

@@ -132,6 +132,26 @@ fn check_says_what_the_automatic_solver_does_at_the_scenes_size() {
     }
 }
 
+/// A scene's own terms are listed by name, on a line that a scene without
+/// them does not have.
+#[test]
+fn check_lists_the_scenes_own_terms() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("windy.toml");
+    let text = "name = \"windy\"\n\n[world]\n\
+                wind = { velocity = [0.0, 0.0, 2.0], drag = 0.5 }\n\n\
+                [[bodies]]\ntype = \"cloth\"\nname = \"cloth\"\n\
+                columns = 4\nrows = 4\nsize = [1.0, 1.0]\nmass = 1.0\n\
+                stretch = { stiffness = 100.0 }\n";
+    std::fs::write(&path, text).unwrap();
+    let (code, out, err) = hooke(&["check", path.to_str().unwrap()]);
+    assert_eq!(code, ExitCode::SUCCESS, "{err}");
+    assert!(out.contains("\nterms       wind\n"), "{out}");
+    let (code, out, err) = hooke(&["check", &shipped("cloth-on-sphere.toml")]);
+    assert_eq!(code, ExitCode::SUCCESS, "{err}");
+    assert!(!out.contains("\nterms "), "{out}");
+}
+
 #[test]
 fn check_rejects_a_malformed_file_with_its_line_and_key() {
     let dir = tempfile::tempdir().unwrap();

@@ -12,7 +12,10 @@
 //! ```
 //!
 //! so `E(t) + ∫₀ᵗ P dt = E(0)` holds for the exact motion, and the gap is a
-//! measure of an integrator's energy error.
+//! measure of an integrator's energy error. The system's own terms
+//! ([`System::terms`]) add their energy to `E` and their dissipation to
+//! `P`; a term driven from outside (a wind) also does work `W(t)` on the
+//! particles, and then `E(t) + ∫₀ᵗ P dt = E(0) + W(t)`.
 
 use crate::{State, StepError, System, When};
 
@@ -95,9 +98,18 @@ impl System {
         })
     }
 
-    /// Power `P ≥ 0` removed by spring dampers and air damping in `state`;
-    /// air damping on pinned particles is resisted by the pin and not
-    /// counted.
+    /// Power `P ≥ 0` removed by spring dampers, air damping and the
+    /// system's own terms ([`System::terms`]) in `state`,
+    ///
+    /// ```text
+    /// P = Σ_springs c ((vᵢ − vⱼ)·d)² + Σ_free γ |vᵢ|² + Σ_terms P_term,
+    /// ```
+    ///
+    /// each term's as it gives it ([`Term::dissipation_power`](crate::Term::dissipation_power); for a
+    /// [`Wind`](crate::Wind), `Σ_T c A ((v_T − w)·n)²`). Air damping on
+    /// pinned particles is resisted by the pin and not counted. A term's
+    /// external work (a wind's) is not a dissipation and is not in `P`, so
+    /// with such terms `E(t) + ∫₀ᵗ P dt` is `E(0)` plus that work.
     ///
     /// # Errors
     /// [`StepError::StateMismatch`] for a state of another size.
@@ -117,7 +129,12 @@ impl System {
                     .map(|(vi, _)| vi.norm_squared())
                     .sum::<f64>()
         });
-        Ok(springs + air)
+        let terms: f64 = self
+            .terms
+            .iter()
+            .map(|t| t.dissipation_power(self, x, v))
+            .sum();
+        Ok(springs + air + terms)
     }
 
     /// Largest absolute strain `|l − L|/L` over the springs with positive rest

@@ -3,21 +3,29 @@
 
 use std::ops::ControlFlow;
 
-use hooke_core::{Observer, Path, State, StepInfo, System, Vec3};
+use hooke_core::{Observer, Path, State, StepInfo, StepStart, System, Term, Vec3, When};
 
 /// The energy test of a stability run.
 ///
-/// The energy is that of the moving parts, `E = Σ_free ½ mᵢ|vᵢ|² + Σ ½ k (l − L)²`
-/// (kinetic energy of the free particles plus the springs' elastic
-/// energy), and gravity and scripted pins count as external forces doing
-/// work on it:
+/// The energy is that of the moving parts,
+/// `E = Σ_free ½ mᵢ|vᵢ|² + Σ ½ k (l − L)² + Σ_terms E_term` (kinetic
+/// energy of the free particles, the springs' elastic energy and the
+/// energy of the system's own terms, [`System::terms`], [`Term::energy`]),
+/// and gravity, scripted pins and the terms' external agents (a wind)
+/// count as external forces doing work on it:
 ///
 /// ```text
-/// W(t) = Σ_free mᵢ g·(xᵢ(t) − xᵢ(0))  +  ∫₀ᵗ −Σ_scripted vₚ·fₚ dt
+/// W(t) = Σ_free mᵢ g·(xᵢ(t) − xᵢ(0))  +  ∫₀ᵗ −Σ_scripted vₚ·fₚ dt  +  Σ_steps Σ_terms W_term
 /// ```
 ///
 /// where `fₚ` is the total spring force on scripted pin `p` (the integral
-/// by the trapezoidal rule over the steps). For the exact motion
+/// by the trapezoidal rule over the steps), and `W_term` is each term's
+/// work over each recorded step from `(xₙ, vₙ)` to `(xₙ₊₁, vₙ₊₁)`
+/// ([`Term::work`], after [`Term::begin`] at the step's start, with
+/// `βh = h` as the budget does not know the integrator): the quantity an
+/// implicit step's energy test allows for, by the term's own rule (a
+/// wind's, `h Σ_T F_T(vₙ₊₁)·w` with the triangles at the step's start,
+/// first order in `h`). For the exact motion
 /// `E(t) = E(0) + W(t) − D(t)` with the dissipated energy `D ≥ 0` (spring
 /// and air damping, inelastic contacts with fixed obstacles), so the
 /// *energy gain*
@@ -53,8 +61,8 @@ use hooke_core::{Observer, Path, State, StepInfo, System, Vec3};
 /// integrator's amplification factor gives, to rounding (the tests
 /// `the_reported_ratio_is_the_amplification_factors_at_small_steps` and
 /// `the_reported_gain_is_the_theorys_at_every_stiffness`).
-/// Only the pins' work, which depends on the path, is summed by the
-/// trapezoidal rule.
+/// Only the pins' and the terms' work, which depend on the path, are
+/// summed over the steps.
 ///
 /// As an [`Observer`] (called after every step) it records each state and
 /// stops the run at the first ratio above its [bound](Self::with_bound) or
@@ -76,6 +84,13 @@ pub struct EnergyBudget {
     time: f64,
     bound: f64,
     exceeded: bool,
+    /// Copies of the system's own terms, which lag state over a step.
+    terms: Vec<Box<dyn Term>>,
+    /// `Σ_steps Σ_terms W_term` so far, J.
+    term_work: f64,
+    /// Positions and velocities of the last recorded state, the start of
+    /// the next step's term work (empty without terms).
+    last: (Vec<Vec3>, Vec<Vec3>),
 }
 
 impl EnergyBudget {
@@ -92,6 +107,12 @@ impl EnergyBudget {
             .filter(|(_, path)| !matches!(path, Path::Fixed))
             .map(|&(p, _)| p)
             .collect();
+        let terms = system.terms().to_vec();
+        let last = if terms.is_empty() {
+            (Vec::new(), Vec::new())
+        } else {
+            (state.positions().to_vec(), state.velocities().to_vec())
+        };
         let mut budget = Self {
             masses: system.masses().to_vec(),
             start: state.positions().to_vec(),
@@ -108,6 +129,9 @@ impl EnergyBudget {
             time: state.time(),
             bound: f64::INFINITY,
             exceeded: false,
+            terms,
+            term_work: 0.0,
+            last,
         };
         budget.initial = budget.energy(system, &state);
         budget.pin_power = budget.pin_power(system, &state);
@@ -141,7 +165,14 @@ impl EnergyBudget {
             .iter()
             .map(|s| s.energy(x[s.i], x[s.j]))
             .sum();
-        kinetic + elastic
+        // A term evaluates with scratch of its own, so it is asked on a
+        // copy, as `System::energy` does: nothing for a system without.
+        let terms: f64 = system
+            .terms()
+            .iter()
+            .map(|t| t.clone_box().energy(system, x, v, When::End).value)
+            .sum();
+        kinetic + elastic + terms
     }
 
     /// `E(0)`, J.
@@ -187,16 +218,42 @@ impl EnergyBudget {
             .sum()
     }
 
+    /// Adds the terms' work over the step from the last recorded state to
+    /// `state` to `Σ_steps Σ_terms W_term`, and keeps `state` as the next
+    /// step's start.
+    fn add_term_work(&mut self, system: &System, state: &State) {
+        if self.terms.is_empty() {
+            return;
+        }
+        let (x, v) = (state.positions(), state.velocities());
+        let (x0, v0) = &mut self.last;
+        let h = state.time() - self.time;
+        let step = StepStart {
+            x: x0,
+            v: v0,
+            time: self.time,
+            h,
+            beta_h: h,
+        };
+        for term in &mut self.terms {
+            term.begin(system, &step);
+            self.term_work += term.work(system, &step, x, v);
+        }
+        x0.copy_from_slice(x);
+        v0.copy_from_slice(v);
+    }
+
     /// Records `state` (the state after the next step) and returns its
     /// energy ratio, or `None` while the ratio is not defined.
     pub fn record(&mut self, system: &System, state: &State) -> Option<f64> {
+        self.add_term_work(system, state);
         if !self.scripted.is_empty() {
             let power = self.pin_power(system, state);
             self.pin_work += 0.5 * (self.pin_power + power) * (state.time() - self.time);
             self.pin_power = power;
         }
         self.time = state.time();
-        let work = self.gravity_work(state) + self.pin_work;
+        let work = self.gravity_work(state) + self.pin_work + self.term_work;
         self.max_work = self.max_work.max(work);
         let allowance = self.initial + self.max_work;
         let gain = self.energy(system, state) - (self.initial + work);

@@ -150,6 +150,18 @@ pub trait Term: fmt::Debug + Send + Sync + TermClone {
     /// which they resolve at the end of each step).
     fn force(&self, system: &System, x: &[Vec3], v: &[Vec3], f: &mut [Vec3]);
 
+    /// The power `P ≥ 0` the term dissipates at `(x, v)`, W: for a
+    /// dissipation potential `R` of a velocity relative to a moving
+    /// medium, `−Σᵢ fᵢ·(vᵢ − wᵢ)`, where `wᵢ` is the medium's velocity at
+    /// particle `i`. The force's power `Σᵢ fᵢ·vᵢ` alone does not tell it:
+    /// it is `−P`, plus the external agents' power, minus the rate of
+    /// change of the term's energy (a wind's drag both dissipates and
+    /// does work), so each term says what it dissipates. By default zero,
+    /// for a term that dissipates nothing.
+    fn dissipation_power(&self, _system: &System, _x: &[Vec3], _v: &[Vec3]) -> f64 {
+        0.0
+    }
+
     /// Adds to each particle's `stiffness` and `damping` rates a bound on
     /// the absolute row sums of the term's `M^(−1/2) K M^(−1/2)` and
     /// `M^(−1/2) C M^(−1/2)` at it, `w` holding `1/√mᵢ` (zero for pinned

@@ -296,6 +296,20 @@ impl Term for Wind {
         }
     }
 
+    /// `P = Σ_T c A ((v_T − w)·n)² = −Σ_T F_T·(v_T − w)` with each
+    /// triangle's area and normal at `x`: the drag's power `Σ_T F_T·v_T`
+    /// less the wind's `Σ_T F_T·w`, negated (see [`Wind`]).
+    fn dissipation_power(&self, _system: &System, x: &[Vec3], v: &[Vec3]) -> f64 {
+        self.triangles
+            .iter()
+            .map(|&t| {
+                let face = Face::at(t, x, self.drag);
+                let s = face.speed(t, v, self.velocity);
+                face.drag * s * s
+            })
+            .sum()
+    }
+
     /// `wᵢ Σ_{T ∋ i} (c A / 9)(w_a + w_b + w_c)` on the damping rates, the
     /// areas at the initial positions.
     fn rates(&self, system: &System, w: &[f64], _stiffness: &mut [f64], damping: &mut [f64]) {

@@ -285,3 +285,48 @@ fn a_wind_out_of_its_domain_is_refused() {
         }
     }
 }
+
+/// The dissipated power is the drag's power against the air,
+/// `−Σᵢ fᵢ·(vᵢ − w)` from the force, non-negative, and the system's
+/// dissipation adds it to the air damping's `γ Σ |vᵢ|²`.
+#[test]
+fn the_dissipation_is_the_drags_power_against_the_air() {
+    let mut rng = Rng::new(13);
+    for _ in 0..10 {
+        let (system, wind) = windy(&mut rng);
+        let n = system.particle_count();
+        let x: Vec<Vec3> = system
+            .initial_positions()
+            .iter()
+            .map(|p| p + rng.vec3(0.3))
+            .collect();
+        let v: Vec<Vec3> = (0..n).map(|_| rng.vec3(2.0)).collect();
+        let mut f = vec![Vec3::zeros(); n];
+        wind.force(&system, &x, &v, &mut f);
+        let against: f64 = -f
+            .iter()
+            .zip(&v)
+            .map(|(f, v)| f.dot(&(v - wind.velocity)))
+            .sum::<f64>();
+        let power = wind.dissipation_power(&system, &x, &v);
+        assert!(power >= 0.0);
+        assert!(
+            (power - against).abs() <= 1e-12 * power,
+            "{power} against {against}"
+        );
+        let gamma = rng.uniform(0.1, 1.0);
+        let mut b = SystemBuilder::new();
+        for (i, p) in x.iter().enumerate() {
+            b.particle_with_velocity(system.masses()[i], *p, v[i]);
+        }
+        b.air_damping(gamma);
+        b.term(wind.clone());
+        let damped = b.build().unwrap();
+        let air: f64 = gamma * v.iter().map(|v| v.norm_squared()).sum::<f64>();
+        let total = damped.dissipation_power(&damped.initial_state()).unwrap();
+        assert!(
+            (total - (air + power)).abs() <= 1e-12 * (air + power),
+            "{total} against {air} + {power}"
+        );
+    }
+}

@@ -5,8 +5,9 @@
 //! stiffness multiplied by a scale `s`, at one step `dt`, for
 //! `max(duration / dt, min_steps)` steps, watched by an
 //! [`EnergyBudget`](crate::EnergyBudget): with `E` the kinetic energy of
-//! the free particles plus the elastic energy and `W` the work of gravity
-//! and scripted pins, the run's *energy gain* and *energy ratio* are
+//! the free particles plus the elastic energy (and the energy of the
+//! system's own terms) and `W` the work of gravity, scripted pins and the
+//! terms' external agents (a wind), the run's *energy gain* and *energy ratio* are
 //!
 //! ```text
 //! G(t) = E(t) − E(0) − W(t),       ratio(t) = 1 + G(t) / (E(0) + max_{s≤t} W(s)).
