@@ -4,8 +4,8 @@
 use hooke_core::{CompressedSprings, Term, Vec3};
 use nalgebra::DMatrix;
 
-use super::cases::Curvature;
 use super::dense::{RATIOS, largest, parts, positive_part, smallest_eigenvalue};
+use super::kinds::Curvature;
 use super::point::{Point, flat, largest_of};
 
 /// The relative error allowed a gradient against its central

@@ -10,7 +10,7 @@
 
 use hooke_core::{Obstacle, Path, Shape as Geometry, Vec3};
 
-use super::cases::{Contact, Curvature, Draws, Friction, Parts, Shape};
+use super::kinds::{Contact, Curvature, Draws, Friction, Parts, Shape};
 
 /// A contact configuration placed in a case.
 pub(super) struct Contacting {

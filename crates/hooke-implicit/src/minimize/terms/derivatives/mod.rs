@@ -44,6 +44,7 @@ mod cases;
 mod checks;
 mod contacts;
 mod dense;
+mod kinds;
 mod own_terms;
 mod point;
 
@@ -54,8 +55,9 @@ use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 
 use super::Terms;
-use cases::{CONTACTS, Case, Contact, Draws, FRICTIONS, Friction};
+use cases::Case;
 use checks::{definite, gradient, hessian, linearisation};
+use kinds::{CONTACTS, Contact, Draws, FRICTIONS, Friction};
 use point::Point;
 
 /// A central difference's step, as a fraction of the length or speed

@@ -10,7 +10,7 @@ use hooke_core::{
     At, Hessian, Potential, StepStart, SymBlock, System, SystemBuilder, Term, Vec3, When,
 };
 
-use super::cases::Draws;
+use super::kinds::Draws;
 
 /// Declares the system's own terms in `builder`: an [`Anchor`] holding
 /// the particle `anchored` near its position `x`, and a [`Drag`] about
