@@ -55,8 +55,10 @@ pub enum Minimizer {
         /// only while `H₀` stays the same (the same `βh`, no contact terms).
         carried: usize,
     },
-    /// Baraff & Witkin's linearised step: one linear solve, no line
-    /// search, no rejection.
+    /// Baraff & Witkin's linearised step: Newton's method stopped after
+    /// one iteration and taken as it comes — one linear solve, no line
+    /// search, no rejection (with contact, one Newton step from the
+    /// feasible start, bounded by collision detection).
     Linearized,
 }
 
