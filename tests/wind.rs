@@ -141,21 +141,12 @@ fn a_curtain_in_a_steady_wind_comes_to_rest_at_the_balance_angle() {
 /// of the closed form.
 #[test]
 fn an_explicit_integrator_feels_the_drag() {
-    let m = 0.05;
-    let p = [
-        Vec3::new(0.0, 1.0, 0.0),
-        Vec3::new(0.4, 1.1, 0.2),
-        Vec3::new(0.1, 1.5, -0.3),
-    ];
-    let (w, c) = (Vec3::new(1.5, -0.5, 2.0), 0.8);
-    let mut b = SystemBuilder::new();
-    let t = p.map(|p| b.particle(m, p));
-    b.term(Wind::new(w, c, vec![t]));
-    let system = b.build().unwrap();
-    let cross = (p[1] - p[0]).cross(&(p[2] - p[0]));
-    let (area, normal) = (0.5 * cross.norm(), cross.normalize());
-    let lambda = c * area / (3.0 * m);
-    let wn = w.dot(&normal);
+    let LoneTriangle {
+        system,
+        normal,
+        lambda,
+        wn,
+    } = LoneTriangle::new();
     let dt = 1e-4 / lambda;
     let mut integrator = SymplecticEuler::new();
     let mut state = system.initial_state();
@@ -190,21 +181,12 @@ fn an_explicit_integrator_feels_the_drag() {
 /// preconditioning CG), with PCG and with multigrid.
 #[test]
 fn the_implicit_step_couples_the_vertices_no_spring_joins() {
-    let m = 0.05;
-    let p = [
-        Vec3::new(0.0, 1.0, 0.0),
-        Vec3::new(0.4, 1.1, 0.2),
-        Vec3::new(0.1, 1.5, -0.3),
-    ];
-    let (w, c) = (Vec3::new(1.5, -0.5, 2.0), 0.8);
-    let mut b = SystemBuilder::new();
-    let t = p.map(|p| b.particle(m, p));
-    b.term(Wind::new(w, c, vec![t]));
-    let system = b.build().unwrap();
-    let cross = (p[1] - p[0]).cross(&(p[2] - p[0]));
-    let (area, normal) = (0.5 * cross.norm(), cross.normalize());
-    let lambda = c * area / (3.0 * m);
-    let wn = w.dot(&normal);
+    let LoneTriangle {
+        system,
+        normal,
+        lambda,
+        wn,
+    } = LoneTriangle::new();
     let h = 0.5 / lambda;
     for solver in [
         LinearSolver::Cholesky,
@@ -223,6 +205,42 @@ fn the_implicit_step_couples_the_vertices_no_spring_joins() {
                     "{solver:?}, step {k}: {v} against {exact}"
                 );
             }
+        }
+    }
+}
+
+/// A free triangle of three 0.05 kg particles, no springs, in a wind
+/// `w = (1.5, −0.5, 2)` m/s of drag `c = 0.8`: its normal `n`, the rate
+/// `λ = cA/(3m)` at which each vertex's normal velocity relaxes, and `w·n`.
+struct LoneTriangle {
+    system: System,
+    normal: Vec3,
+    lambda: f64,
+    wn: f64,
+}
+
+impl LoneTriangle {
+    fn new() -> Self {
+        let m = 0.05;
+        let p = [
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(0.4, 1.1, 0.2),
+            Vec3::new(0.1, 1.5, -0.3),
+        ];
+        let (w, c) = (Vec3::new(1.5, -0.5, 2.0), 0.8);
+        let mut b = SystemBuilder::new();
+        let t = p.map(|p| b.particle(m, p));
+        b.term(Wind::new(w, c, vec![t]));
+        let system = b.build().unwrap();
+        let cross = (p[1] - p[0]).cross(&(p[2] - p[0]));
+        let (area, normal) = (0.5 * cross.norm(), cross.normalize());
+        let lambda = c * area / (3.0 * m);
+        let wn = w.dot(&normal);
+        Self {
+            system,
+            normal,
+            lambda,
+            wn,
         }
     }
 }
