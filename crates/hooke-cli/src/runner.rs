@@ -203,6 +203,13 @@ pub fn run(
         energy_gain,
         energy_gain_time,
         warnings,
+        proximity_queries: implicit.then_some(total.proximity_queries),
+        detection_share: implicit
+            .then(|| total.detection_seconds / (record.step_ms.iter().sum::<f64>() * 1e-3)),
+        truncated_particles_mean: implicit
+            .then(|| total.truncated_particles as f64 / total.newton_iterations.max(1) as f64),
+        truncated_particles_max: implicit.then_some(total.truncated_particles_max),
+        bound_fallbacks: implicit.then_some(total.bound_fallbacks),
         contacts_max: record.contacts_max,
         contact_distance: has_surfaces.then(|| system.contact_distance()),
         close_pairs_max: has_surfaces.then_some(surfaces.close_pairs_max),

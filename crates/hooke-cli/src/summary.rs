@@ -112,6 +112,24 @@ pub struct Summary {
     /// did not converge, linear solves stopped at their cap, energy
     /// corrected or gained; `hooke run` prints them.
     pub warnings: Vec<String>,
+    /// Proximity queries of the implicit methods' contact — searches of
+    /// its pair list, by proximity or swept along a motion
+    /// (`StepReport::proximity_queries`); `None` for other integrators.
+    pub proximity_queries: Option<usize>,
+    /// The share of the stepping time ([`simulation_s`](Self::simulation_s))
+    /// the implicit methods' collision detection took: its searches and its
+    /// checks of motions (CCD); `None` for other integrators.
+    pub detection_share: Option<f64>,
+    /// Particles whose motion the implicit methods' per-particle contact
+    /// bounds cut (`contact_limit = "particles"`), per Newton iteration on
+    /// average; `None` for other integrators.
+    pub truncated_particles_mean: Option<f64>,
+    /// Most particles one Newton iteration cut; `None` for other
+    /// integrators.
+    pub truncated_particles_max: Option<usize>,
+    /// Newton iterations whose cut step did not lower `Φ` enough and fell
+    /// back to the global collision limit; `None` for other integrators.
+    pub bound_fallbacks: Option<usize>,
     /// Most contacts at the end of one step as the integrator counts them
     /// (`StepReport::contacts`): particles on or within the contact
     /// distance of an obstacle, and for the implicit methods also the

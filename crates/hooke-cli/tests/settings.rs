@@ -71,6 +71,7 @@ fn summary_json_reports_every_implicit_setting_the_run_used() {
             "max_halvings": 10,
             "strict": false,
             "compressed_springs": "clamped",
+            "contact_limit": "global",
         })
     );
     // Read back, the report is the settings the scene file gave, the
@@ -161,7 +162,7 @@ fn check_prints_every_implicit_setting_as_the_scene_file_writes_it() {
         "solver = \"amg\", tolerance = 1e-6, max_iterations = 1000, step = \"newton\", \
          newton_iterations = 100, newton_tolerance = 0.005, inexact_newton = true, \
          amg_renewal = \"smoother-only\", max_halvings = 10, strict = false, \
-         compressed_springs = \"clamped\""
+         compressed_springs = \"clamped\", contact_limit = \"global\""
     );
     assert!(
         out.contains("amg: multigrid PCG to 1e-6 in at most 1000 iterations, newton: "),

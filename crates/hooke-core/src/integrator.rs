@@ -56,6 +56,21 @@ pub struct StepReport {
     /// files spell it (`"cholesky"`, `"pcg"`, `"amg"`; what `"auto"` chose);
     /// empty for methods without linear solves.
     pub linear_solver: &'static str,
+    /// Proximity queries of an implicit method's contact: searches of its
+    /// pair list, by proximity or swept along a motion.
+    pub proximity_queries: usize,
+    /// Time an implicit method's contact spent on collision detection — its
+    /// searches and its checks of motions (CCD) — in seconds.
+    pub detection_seconds: f64,
+    /// Particles whose motion an implicit method's per-particle contact
+    /// bounds cut, summed over its Newton iterations
+    /// (`hooke_implicit::ContactLimit::Particles`).
+    pub truncated_particles: usize,
+    /// Most particles one Newton iteration cut.
+    pub truncated_particles_max: usize,
+    /// Newton iterations whose cut step did not descend and that fell back
+    /// to the global collision limit along the whole step.
+    pub bound_fallbacks: usize,
 }
 
 impl StepReport {
@@ -87,6 +102,13 @@ impl AddAssign for StepReport {
         self.energy_excess = self.energy_excess.max(other.energy_excess);
         self.contacts += other.contacts;
         self.newton_residual = self.newton_residual.max(other.newton_residual);
+        self.proximity_queries += other.proximity_queries;
+        self.detection_seconds += other.detection_seconds;
+        self.truncated_particles += other.truncated_particles;
+        self.truncated_particles_max = self
+            .truncated_particles_max
+            .max(other.truncated_particles_max);
+        self.bound_fallbacks += other.bound_fallbacks;
         if !other.linear_solver.is_empty() {
             self.linear_solver = other.linear_solver;
         }

@@ -163,6 +163,7 @@ pub use fast_mass_spring::FastMassSpring;
 pub use linear::cg::PcgSettings;
 pub use linear::cholesky::{Supernodes, WeakSprings};
 pub use linear::solver::{AmgRenewal, AutoSettings, LinearSolver};
+pub use minimize::bounds::ContactLimit;
 pub use minimize::minimizer::Minimizer;
 pub use minimize::terms::Terms;
 pub use step::error_control::{self, ErrorControl};

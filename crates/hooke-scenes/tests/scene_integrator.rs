@@ -7,8 +7,8 @@ use hooke_core::reference::Sheet;
 use hooke_core::{CompressedSprings, Integrator, Named};
 use hooke_explicit::DormandPrince;
 use hooke_implicit::{
-    AmgRenewal, ErrorControl, Implicit, ImplicitSettings, LinearSolver, Minimizer, PcgSettings,
-    Scheme, Supernodes, WeakSprings,
+    AmgRenewal, ContactLimit, ErrorControl, Implicit, ImplicitSettings, LinearSolver, Minimizer,
+    PcgSettings, Scheme, Supernodes, WeakSprings,
 };
 use hooke_scenes::{IntegratorSpec, Method};
 
@@ -353,6 +353,10 @@ fn the_factorization_multigrid_and_newton_keys_are_read_and_checked() {
     for name in CompressedSprings::names() {
         let read = settings(&format!("compressed_springs = \"{name}\"")).unwrap();
         assert_eq!(read.compressed.name(), name);
+    }
+    for name in ContactLimit::names() {
+        let read = settings(&format!("contact_limit = \"{name}\"")).unwrap();
+        assert_eq!(read.contact_limit.name(), name);
     }
     for name in AmgRenewal::names() {
         let read = settings(&format!("solver = \"amg\"\namg_renewal = \"{name}\"")).unwrap();

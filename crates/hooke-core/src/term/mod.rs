@@ -205,6 +205,24 @@ pub trait Term: fmt::Debug + Send + Sync + TermClone {
         1.0
     }
 
+    /// Each particle's fraction `sᵢ ∈ [0, 1]` of the motion from `x` by
+    /// `dx` such that the term stays finite, with room to spare, along the
+    /// motion from `x` to `x + s∘dx` (`(s∘dx)ᵢ = sᵢ dxᵢ`): [`Term::limit`]
+    /// per particle, so that a particle the term does not stop moves all
+    /// the way. `None` for a term that stops no motion. As after
+    /// [`Term::limit`], a barrier's [`Term::value`] and [`Term::add`] may
+    /// require their point to lie on the motion last checked.
+    fn truncate(&mut self, _system: &System, _x: &[Vec3], _dx: &[Vec3]) -> Option<&[f64]> {
+        None
+    }
+
+    /// The collision detection the term ran since the last call: its
+    /// proximity queries and the time its searches and checks of motions
+    /// took, in seconds. None for a term without contact.
+    fn take_detection(&mut self) -> (usize, f64) {
+        (0, 0.0)
+    }
+
     /// Tells the term that a full Newton step of its model failed the line
     /// search: a term with a model that cannot overshoot its minimum (the
     /// friction's majorizing one) turns to it for the rest of the step.

@@ -47,6 +47,9 @@ pub(crate) trait Descent {
         let _ = last;
     }
 
+    /// The slope `∇Φ·d` along `d` at the iterate of the last direction.
+    fn slope(&self, d: &[Vec3]) -> f64;
+
     /// The direction `δ` at the iterate `v`; returns the slope `∇Φ·δ`.
     ///
     /// # Errors

@@ -7,6 +7,7 @@
 use hooke_core::{Potential, StepError, StepReport, Vec3};
 
 use crate::linear::matrix::DiagonalBlocks;
+use crate::linear::vector::dot;
 use crate::minimize::descent::Descent;
 use crate::minimize::objective::{Objective, iterate};
 use crate::minimize::quasi_newton::QuasiNewton;
@@ -43,6 +44,10 @@ impl Descent for Lbfgs<'_> {
     /// The quasi-Newton step at `v`: the residual `−∇Φ(v)`, the barriers'
     /// gradients included, without any matrix, then L-BFGS's two-loop
     /// recursion ([`QuasiNewton::direction`]). Returns the slope `∇Φ·δ`.
+    fn slope(&self, d: &[Vec3]) -> f64 {
+        -dot(self.b, d)
+    }
+
     fn direction(
         &mut self,
         phi: &mut Objective<'_>,

@@ -7,12 +7,13 @@
 use hooke_core::{Potential, StepError, Vec3};
 
 use crate::linear::vector::for_each_row;
+use crate::minimize::bounds::bound;
 use crate::minimize::descent::Descent;
 use crate::minimize::objective::Objective;
 
 /// The sufficient-decrease constant `c` of the Armijo condition
 /// `Φ(v + αδ) ≤ Φ(v) + c α ∇Φ·δ`.
-const ARMIJO: f64 = 1e-4;
+pub(crate) const ARMIJO: f64 = 1e-4;
 
 /// The longest multiple of a direction the line search tries.
 const MAX_EXTRAPOLATION: f64 = 64.0;
@@ -140,16 +141,18 @@ pub(crate) fn minimize<D: Descent>(
         let slope = descent.direction(phi, &it.v, &mut it.delta)?;
         outcome.iterations += 1;
         outcome.residual = phi.decrement(slope, &it.v, &it.delta, v0);
-        // The longest fraction of δ collision detection allows.
-        let limit = phi.limit(&it.v, &it.delta, 1.0);
+        // The longest fraction of δ (cut per particle, where it was)
+        // collision detection allows.
+        let bound = bound(descent, phi, it, slope, current.value);
+        let (limit, slope) = (bound.limit, bound.slope);
         // A quasi-Newton step's model overestimates the curvature of
         // soft modes and so its predicted decrease; it is at the floor
         // only once the last iterate lowered Φ by no more than rounding.
         let floor = 0.5 * slope.abs() <= current.rounding()
             && (D::EXACT_CURVATURE || previous - current.value <= current.rounding());
         // The full step's Φ, once the quasi-Newton stopping rule needed it.
-        let mut evaluated = None;
-        if limit >= 1.0 && (outcome.residual <= tolerance || floor) {
+        let mut evaluated = bound.full;
+        if limit >= 1.0 && !bound.truncated && (outcome.residual <= tolerance || floor) {
             if D::EXACT_CURVATURE || floor || outcome.residual == 0.0 {
                 add(&mut it.v, &it.delta);
                 outcome.converged = true;

@@ -22,6 +22,7 @@
 //! it), one `mod` line here, and in `minimizer.rs` its variant, its name in
 //! the table, its properties and the arm that builds it.
 
+pub(crate) mod bounds;
 pub(crate) mod contact;
 pub(crate) mod descent;
 pub(crate) mod lbfgs;

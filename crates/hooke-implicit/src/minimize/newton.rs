@@ -92,6 +92,10 @@ impl Descent for Newton<'_> {
         }
     }
 
+    fn slope(&self, d: &[Vec3]) -> f64 {
+        -dot(self.linear.b, d)
+    }
+
     /// Newton's step `δ` at `v`: assembles the terms' `(M + βh C + β²h² K)
     /// δ = −∇Φ(v)` with their exact Hessians (unless an earlier iteration
     /// of the same step needed the stand-ins, [`Newton::hessian`]), or —

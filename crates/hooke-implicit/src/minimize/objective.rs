@@ -8,6 +8,7 @@
 use hooke_core::{At, CompressedSprings, Potential, System, Vec3};
 
 use crate::linear::vector::for_each_row;
+use crate::minimize::bounds::Bounds;
 use crate::minimize::terms::Terms;
 
 /// `Φ` of one (sub)step: the system and its terms, the predictor
@@ -26,6 +27,8 @@ pub(crate) struct Objective<'a> {
     pub(crate) x: &'a mut [Vec3],
     /// Scratch for the motion `βh α δ` that collision detection checks.
     pub(crate) motion: &'a mut [Vec3],
+    /// How contact bounds each motion, and what the bounds did.
+    pub(crate) bounds: Bounds,
 }
 
 impl Objective<'_> {

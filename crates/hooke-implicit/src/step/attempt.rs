@@ -10,6 +10,7 @@ use hooke_core::{State, StepError, StepReport, StepStart, System, Vec3};
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::{Topology, topology};
 use crate::linear::vector::for_each_row;
+use crate::minimize::bounds::Bounds;
 use crate::minimize::line_search::Outcome as Minimized;
 use crate::minimize::minimizer::{Kept, Rules, Start};
 use crate::minimize::newton::Linear;
@@ -267,6 +268,7 @@ fn minimize(
         compressed: settings.compressed,
         x: &mut work.x,
         motion: u,
+        bounds: Bounds::new(settings.contact_limit),
     };
     let rules = Rules {
         iterations: settings.newton_iterations,
@@ -280,6 +282,7 @@ fn minimize(
         settings
             .minimizer
             .minimize(rules, kept, &mut phi, linear, it, (step.v, start))?;
+    phi.bounds.report(report);
     let (v, beta_h) = (&it.v, step.beta_h);
     for_each_row(&mut work.x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
     Ok(outcome)

@@ -5,6 +5,7 @@ use hooke_core::{CompressedSprings, ParameterError};
 
 use crate::linear::cholesky::{Supernodes, WeakSprings};
 use crate::linear::solver::{AmgRenewal, LinearSolver};
+use crate::minimize::bounds::ContactLimit;
 use crate::minimize::minimizer::Minimizer;
 use crate::step::comparison::Comparison;
 use crate::step::error_control::ErrorControl;
@@ -92,6 +93,21 @@ impl Implicit {
     #[must_use]
     pub fn with_supernodes(mut self, supernodes: Supernodes) -> Self {
         self.settings.supernodes = supernodes;
+        self.rebuilt()
+    }
+
+    /// How contact bounds each iterate's motion: by default
+    /// [`ContactLimit::Global`], the whole step as far as the first pair to
+    /// touch allows; [`ContactLimit::Particles`] moves each particle as far
+    /// as its own contacts allow.
+    ///
+    /// ```
+    /// use hooke_implicit::{ContactLimit, Implicit};
+    /// let per_particle = Implicit::backward_euler().with_contact_limit(ContactLimit::Particles);
+    /// ```
+    #[must_use]
+    pub fn with_contact_limit(mut self, limit: ContactLimit) -> Self {
+        self.settings.contact_limit = limit;
         self.rebuilt()
     }
 

@@ -9,6 +9,7 @@ use hooke_core::{At, StepError, StepReport, StepStart, System, Vec3};
 use crate::linear::solver::solve::Solve;
 use crate::linear::solver::topology::Topology;
 use crate::linear::vector::for_each_row;
+use crate::minimize::bounds::bound_start;
 use crate::minimize::minimizer::Start;
 use crate::minimize::newton::Linear;
 use crate::minimize::terms::Terms;
@@ -57,8 +58,13 @@ pub(crate) fn candidates(
         for_each_row(x, |i, x| *x = x_tilde[i] + beta_h * v[i]);
         let trial = &it.trial;
         for_each_row(ahead, |i, a| *a = beta_h * trial[i]);
-        let tau = terms.limit(system, x, ahead);
-        for_each_row(&mut it.trial, |i, t| *t = v[i] + tau * *t);
+        bound_start(
+            terms,
+            system,
+            settings.contact_limit,
+            (x, ahead),
+            (v, &mut it.trial),
+        );
         return Ok(Start::Feasible);
     }
     if !settings.minimizer.assembles() {

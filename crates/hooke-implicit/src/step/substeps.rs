@@ -94,6 +94,11 @@ impl Integrator for Implicit {
                 }
             }
         }
+        if let Some(terms) = self.terms.as_mut() {
+            let (queries, seconds) = terms.take_detection();
+            report.proximity_queries += queries;
+            report.detection_seconds += seconds;
+        }
         self.comparison
             .step_ended(self.topology.as_mut(), clock.elapsed(), dt);
         Ok(report)

@@ -197,6 +197,7 @@ fn settings_keys(t: &IntegratorTable) -> Vec<Entry<'_>> {
         entry("compressed_springs", t.compressed_springs.as_ref()),
         entry("rtol", t.rtol.as_ref()),
         entry("atol", t.atol.as_ref()),
+        entry("contact_limit", t.contact_limit.as_ref()),
     ]
     .into_iter()
     .flatten()

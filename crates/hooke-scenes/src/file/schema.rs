@@ -58,6 +58,7 @@ pub(crate) struct IntegratorTable {
     pub(crate) compressed_springs: Option<Spanned<String>>,
     pub(crate) rtol: Option<Spanned<f64>>,
     pub(crate) atol: Option<Spanned<f64>>,
+    pub(crate) contact_limit: Option<Spanned<String>>,
     pub(crate) iterations: Option<Spanned<usize>>,
 }
 

@@ -18,7 +18,9 @@
 //! part), and every line search is bounded by continuous collision
 //! detection: a step along a direction goes at most as far as keeps every
 //! pair at a tenth of its gap ([`KEEP`]), so no iterate ever crosses and
-//! `Φ` stays finite. Contacts never enter or leave the iteration as
+//! `Φ` stays finite — the whole step as far as the first pair allows
+//! ([`Contact::limit`]), or each particle as far as its own pairs allow
+//! ([`Contact::truncate`], the minimiser's `bounds` module). Contacts never enter or leave the iteration as
 //! constraints: `Φ` keeps its shape from one iterate to the next.
 //!
 //! **One model.** The pairs of every kind come from one list (the `pairs`
@@ -104,6 +106,8 @@ pub(crate) struct Contact {
     start: Vec<Vec3>,
     /// The smallest gap seen at the end of an accepted step so far.
     pub(crate) smallest_gap: f64,
+    /// Each particle's fraction of the last truncated motion.
+    scale: Vec<f64>,
 }
 
 impl Contact {
@@ -300,6 +304,28 @@ impl Contact {
         let geometry = Geometry::new(system, &self.obstacles, At::End);
         self.pairs
             .limit(&geometry, x, dx, (KEEP, self.barrier.activation))
+    }
+
+    /// Each particle's fraction `sᵢ ∈ [0, 1]` of the motion from `x` by
+    /// `dx` such that the motion from `x` to `x + s∘dx` keeps every pair at
+    /// least [`KEEP`] of its gap (the `pairs` module's `truncate`):
+    /// [`Contact::value`] and [`Contact::add`] then hold for the points of
+    /// that motion, as after [`Contact::limit`].
+    pub(crate) fn truncate(&mut self, system: &System, x: &[Vec3], dx: &[Vec3]) -> &[f64] {
+        let geometry = Geometry::new(system, &self.obstacles, At::End);
+        self.pairs.truncate(
+            &geometry,
+            (x, dx),
+            (KEEP, self.barrier.activation),
+            &mut self.scale,
+        );
+        &self.scale
+    }
+
+    /// The proximity queries the pair list ran since the last call, and the
+    /// time its collision detection took, in seconds.
+    pub(crate) fn take_detection(&mut self) -> (usize, f64) {
+        self.pairs.take_detection()
     }
 
     /// The number of pairs closer than the contact distance at positions

@@ -103,6 +103,14 @@ impl Term for Contact {
         self.contact.limit(system, x, dx)
     }
 
+    fn truncate(&mut self, system: &System, x: &[Vec3], dx: &[Vec3]) -> Option<&[f64]> {
+        Some(self.contact.truncate(system, x, dx))
+    }
+
+    fn take_detection(&mut self) -> (usize, f64) {
+        self.contact.take_detection()
+    }
+
     fn full_step_failed(&mut self) {
         self.contact.majorize_friction();
     }

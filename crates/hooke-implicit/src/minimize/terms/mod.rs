@@ -63,6 +63,9 @@ pub struct Terms {
     list: Vec<Box<dyn Term>>,
     /// Whether a term is a barrier ([`Term::is_barrier`]).
     barrier: bool,
+    /// Each particle's fraction of the last truncated motion
+    /// ([`Terms::truncate`]).
+    scale: Vec<f64>,
 }
 
 impl Terms {
@@ -96,6 +99,7 @@ impl Terms {
             pattern,
             list,
             barrier,
+            scale: Vec::new(),
         })
     }
 
@@ -222,6 +226,29 @@ impl Terms {
         self.barriers()
             .map(|t| t.limit(system, x, dx))
             .fold(1.0, f64::min)
+    }
+
+    /// Each particle's fraction `sᵢ ∈ [0, 1]` of the motion from `x` by
+    /// `dx` that every barrier allows ([`Term::truncate`]), the smallest of
+    /// theirs; all 1 without barriers.
+    pub(crate) fn truncate(&mut self, system: &System, x: &[Vec3], dx: &[Vec3]) -> &[f64] {
+        let scale = &mut self.scale;
+        scale.clear();
+        scale.resize(x.len(), 1.0);
+        for t in self.list.iter_mut().filter(|t| t.is_barrier()) {
+            if let Some(own) = t.truncate(system, x, dx) {
+                scale.iter_mut().zip(own).for_each(|(s, o)| *s = s.min(*o));
+            }
+        }
+        &self.scale
+    }
+
+    /// The collision detection the terms ran since the last call
+    /// ([`Term::take_detection`]): proximity queries and seconds.
+    pub(crate) fn take_detection(&mut self) -> (usize, f64) {
+        self.barriers()
+            .map(|t| t.take_detection())
+            .fold((0, 0.0), |(q, s), (tq, ts)| (q + tq, s + ts))
     }
 
     /// Tells the terms that a full Newton step failed

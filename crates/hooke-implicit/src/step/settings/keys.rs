@@ -119,6 +119,7 @@ pub(crate) enum Key {
     CompressedSprings,
     Rtol,
     Atol,
+    ContactLimit,
 }
 
 impl Named for Key {
@@ -141,6 +142,7 @@ impl Named for Key {
         (Self::CompressedSprings, "compressed_springs"),
         (Self::Rtol, "rtol"),
         (Self::Atol, "atol"),
+        (Self::ContactLimit, "contact_limit"),
     ];
 }
 
@@ -302,6 +304,7 @@ impl ImplicitSettings {
             Key::CompressedSprings => KeyValue::Name(self.compressed.name()),
             Key::Rtol => KeyValue::Number(self.error_control?.relative()),
             Key::Atol => KeyValue::Number(self.error_control?.absolute()),
+            Key::ContactLimit => KeyValue::Name(self.contact_limit.name()),
         })
     }
 }

@@ -12,6 +12,7 @@ use hooke_core::{CompressedSprings, Named, Parameter, ParameterError};
 
 use crate::linear::cholesky::{Supernodes, WeakSprings};
 use crate::linear::solver::{AmgRenewal, LinearSolver};
+use crate::minimize::bounds::ContactLimit;
 use crate::minimize::minimizer::Minimizer;
 use crate::step::error_control::ErrorControl;
 use crate::step::scheme::Scheme;
@@ -112,6 +113,11 @@ pub struct ImplicitSettings {
     /// substeps that shrink only on rejection (`None`). Default `None`; any
     /// (an [`ErrorControl`] is checked when it is made).
     pub error_control: Option<ErrorControl>,
+    /// How contact bounds each iterate's motion in a system with barriers
+    /// ([`ContactLimit`]): each particle as far as its own contacts allow,
+    /// or the whole step as far as the first pair to touch allows. Default
+    /// [`ContactLimit::Global`]; either.
+    pub contact_limit: ContactLimit,
 }
 
 impl Default for ImplicitSettings {
@@ -119,7 +125,8 @@ impl Default for ImplicitSettings {
     /// Newton steps at [`ImplicitSettings::NEWTON_ITERATIONS`] and
     /// [`ImplicitSettings::NEWTON_TOLERANCE`], rejected steps halved at most
     /// [`ImplicitSettings::MAX_HALVINGS`] times, not strict, clamped compressed
-    /// springs, fixed substeps; every enum at its own default.
+    /// springs, fixed substeps, the global contact limit; every enum at its
+    /// own default.
     fn default() -> Self {
         Self {
             scheme: Scheme::default(),
@@ -135,6 +142,7 @@ impl Default for ImplicitSettings {
             strict: false,
             compressed: CompressedSprings::default(),
             error_control: None,
+            contact_limit: ContactLimit::default(),
         }
     }
 }

@@ -135,6 +135,7 @@ impl ImplicitSettings {
         }
         s.strict = given.switch(Key::Strict)?.unwrap_or(s.strict);
         s.compressed = given.named(Key::CompressedSprings)?.unwrap_or(s.compressed);
+        s.contact_limit = given.named(Key::ContactLimit)?.unwrap_or(s.contact_limit);
         let (rtol, atol) = (given.number(Key::Rtol)?, given.number(Key::Atol)?);
         if rtol.is_some() || atol.is_some() {
             let control = ErrorControl::new(

@@ -7,8 +7,8 @@ use hooke_core::{CompressedSprings, Integrator, Named, Parameter};
 use super::ImplicitSettings;
 use super::keys::{Key, KeyError, KeyProblem, KeyValue};
 use crate::{
-    AmgRenewal, ErrorControl, Implicit, LinearSolver, Minimizer, PcgSettings, Scheme, Supernodes,
-    WeakSprings,
+    AmgRenewal, ContactLimit, ErrorControl, Implicit, LinearSolver, Minimizer, PcgSettings, Scheme,
+    Supernodes, WeakSprings,
 };
 
 /// Every default is the one the fields' docs state, read from the one
@@ -29,6 +29,7 @@ fn each_default_is_the_one_the_docs_state() {
     assert!(!d.strict);
     assert_eq!(d.compressed, CompressedSprings::Clamped);
     assert_eq!(d.error_control, None);
+    assert_eq!(d.contact_limit, ContactLimit::Global);
     assert_eq!(d.validate(), Ok(()));
     assert_eq!(*Implicit::backward_euler().settings(), d);
     let bdf2 = ImplicitSettings {
@@ -90,6 +91,7 @@ fn every_name_round_trips_through_its_table() {
     round_trips(&[WeakSprings::Kept, WeakSprings::Routed]);
     round_trips(&[Supernodes::Blocks, Supernodes::Faer]);
     round_trips(&[CompressedSprings::Clamped, CompressedSprings::Exact]);
+    round_trips(&[ContactLimit::Particles, ContactLimit::Global]);
     let keys: Vec<Key> = Key::TABLE.iter().map(|&(key, _)| key).collect();
     round_trips(&keys);
     // The integrator's name is its scheme's.
@@ -117,6 +119,7 @@ fn unusual() -> [ImplicitSettings; 3] {
             strict: true,
             compressed: CompressedSprings::Exact,
             error_control: Some(ErrorControl::new(1e-2, 0.0).unwrap()),
+            contact_limit: ContactLimit::Particles,
             ..d
         },
         ImplicitSettings {
@@ -384,6 +387,7 @@ fn the_builders_set_the_settings_fields() {
         .strict(true)
         .with_compressed_springs(CompressedSprings::Exact)
         .with_error_control(control)
+        .with_contact_limit(ContactLimit::Particles)
         .linearized();
     let expected = ImplicitSettings {
         scheme: Scheme::Bdf2,
@@ -399,6 +403,7 @@ fn the_builders_set_the_settings_fields() {
         strict: true,
         compressed: CompressedSprings::Exact,
         error_control: Some(control),
+        contact_limit: ContactLimit::Particles,
     };
     assert_eq!(*built.settings(), expected);
     // A Newton setting out of range is the settings' range error.

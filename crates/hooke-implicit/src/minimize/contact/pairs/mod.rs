@@ -20,7 +20,10 @@ mod obstacle;
 mod surface;
 #[cfg(test)]
 mod tests;
+mod truncate;
 mod verlet;
+
+use std::time::Instant;
 
 use hooke_core::{System, Vec3};
 
@@ -41,6 +44,11 @@ pub(crate) struct Pairs {
     /// obstacles allow.
     end: Vec<Vec3>,
     shortened: Vec<Vec3>,
+    /// Scratch for each particle's cut in a round of [`Pairs::truncate`].
+    cut: Vec<f64>,
+    /// The time the searches and checks took since
+    /// [`Pairs::take_detection`] last asked, in seconds.
+    seconds: f64,
 }
 
 impl Pairs {
@@ -59,10 +67,29 @@ impl Pairs {
     /// Makes the list cover `x`, the obstacles where `geometry` places
     /// them: every pair within the contact distance `d̂` there is in it.
     pub(super) fn search(&mut self, geometry: &Geometry, x: &[Vec3], activation: f64) {
-        if self.surfaces {
-            self.surface.search(geometry.system, x, activation);
-        }
-        self.obstacle.search(geometry, x, activation);
+        self.timed(|pairs| {
+            if pairs.surfaces {
+                pairs.surface.search(geometry.system, x, activation);
+            }
+            pairs.obstacle.search(geometry, x, activation);
+        });
+    }
+
+    /// Runs `detect` and adds its time to the detection time.
+    fn timed<R>(&mut self, detect: impl FnOnce(&mut Self) -> R) -> R {
+        let started = Instant::now();
+        let result = detect(self);
+        self.seconds += started.elapsed().as_secs_f64();
+        result
+    }
+
+    /// The proximity queries (searches of either part's list, proximity or
+    /// swept) since the last call, and the time the searches and the
+    /// checks of motions took, in seconds.
+    pub(super) fn take_detection(&mut self) -> (usize, f64) {
+        let queries =
+            std::mem::take(&mut self.surface.queries) + std::mem::take(&mut self.obstacle.queries);
+        (queries, std::mem::take(&mut self.seconds))
     }
 
     /// Makes the obstacle pairs cover `a`, the obstacles where `geometry`
@@ -73,7 +100,7 @@ impl Pairs {
         (a, b, at_b): (&[Vec3], &[Vec3], At),
         activation: f64,
     ) {
-        self.obstacle.cover(geometry, (a, b, at_b), activation);
+        self.timed(|pairs| pairs.obstacle.cover(geometry, (a, b, at_b), activation));
     }
 
     /// The pairs of the list that may lie within `activation` at `x`, in
@@ -126,6 +153,17 @@ impl Pairs {
         geometry: &Geometry,
         x: &[Vec3],
         dx: &[Vec3],
+        reach: (f64, f64),
+    ) -> f64 {
+        self.timed(|pairs| pairs.limit_untimed(geometry, x, dx, reach))
+    }
+
+    /// [`Pairs::limit`], its time not counted.
+    fn limit_untimed(
+        &mut self,
+        geometry: &Geometry,
+        x: &[Vec3],
+        dx: &[Vec3],
         (keep, activation): (f64, f64),
     ) -> f64 {
         self.end.clear();
@@ -152,8 +190,11 @@ impl Pairs {
         } else {
             dx
         };
-        tau * self
-            .surface
-            .limit(geometry, (x, motion, &self.end), (keep, activation))
+        tau * self.surface.limit(
+            geometry,
+            (x, motion, &self.end),
+            (keep, activation),
+            |_, _| (),
+        )
     }
 }

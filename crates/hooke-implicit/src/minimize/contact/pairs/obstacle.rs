@@ -35,6 +35,8 @@ pub(super) struct ObstaclePart {
     pub(super) verlet: Verlet,
     /// Each obstacle's offset along its path at the last search.
     placed: Vec<Vec3>,
+    /// The searches since the count was last taken.
+    pub(super) queries: usize,
 }
 
 impl ObstaclePart {
@@ -107,6 +109,7 @@ impl ObstaclePart {
     /// the margin `margin`: the pairs whose gap is below `d̂` plus the
     /// margin.
     fn refresh(&mut self, geometry: &Geometry, x: &[Vec3], activation: f64, margin: f64) {
+        self.queries += 1;
         let (system, obstacles) = (geometry.system, geometry.obstacles);
         self.verlet.searched(x, margin);
         self.placed.clear();

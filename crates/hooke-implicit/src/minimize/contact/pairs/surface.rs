@@ -63,6 +63,8 @@ pub(super) struct SurfacePart {
     /// Scratch for each particle's distance from the search's positions at
     /// the start of a motion, and the farthest it gets along the motion.
     moved: Vec<(f64, f64)>,
+    /// The searches (proximity or swept) since the count was last taken.
+    pub(super) queries: usize,
 }
 
 impl SurfacePart {
@@ -120,6 +122,7 @@ impl SurfacePart {
     /// A proximity search at `x` with the margin `margin`, keeping the
     /// pairs within `d̂` plus their thickness plus the margin.
     fn refresh(&mut self, system: &System, x: &[Vec3], activation: f64, margin: f64) {
+        self.queries += 1;
         self.verlet.searched(x, margin);
         self.broad.proximity(
             system.surfaces(),
@@ -177,6 +180,7 @@ impl SurfacePart {
     /// neighbouring primitives always meet, and without this the list
     /// kept all of them (about nine a particle).
     fn swept(&mut self, system: &System, (x, end): (&[Vec3], &[Vec3]), activation: f64) {
+        self.queries += 1;
         self.verlet.searched(x, 0.0);
         self.broad.swept(
             system.surfaces(),
@@ -271,11 +275,15 @@ impl SurfacePart {
     ///
     /// and the pair keeps more than `keep g(0)` throughout, where CCD would
     /// return 1.
+    ///
+    /// `limited` is told each pair whose CCD returned less than 1, with
+    /// that fraction (the per-particle truncation of the `truncate` module).
     pub(super) fn limit(
         &mut self,
         geometry: &Geometry,
         (x, dx, end): (&[Vec3], &[Vec3], &[Vec3]),
         (keep, activation): (f64, f64),
+        mut limited: impl FnMut(&Pair, f64),
     ) -> f64 {
         let system = geometry.system;
         // The common translations of `x` and of the motion's end from the
@@ -312,7 +320,11 @@ impl SurfacePart {
             if lowest > keep * highest {
                 continue;
             }
-            tau = tau.min(pair.ccd(geometry, x, dx, keep));
+            let fraction = pair.ccd(geometry, x, dx, keep);
+            if fraction < 1.0 {
+                limited(&pair, fraction);
+            }
+            tau = tau.min(fraction);
         }
         tau
     }

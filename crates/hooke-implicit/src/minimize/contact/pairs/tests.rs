@@ -25,7 +25,7 @@ fn limit(
     keep: (f64, f64),
 ) -> f64 {
     let end: Vec<Vec3> = x.iter().zip(dx).map(|(x, d)| x + d).collect();
-    part.limit(geometry, (x, dx, &end), keep)
+    part.limit(geometry, (x, dx, &end), keep, |_, _| ())
 }
 
 /// The barrier per unit stiffness with contact distance `d_hat`.
