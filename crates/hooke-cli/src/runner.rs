@@ -274,8 +274,8 @@ fn warnings(total: &StepReport, record: &StepRecord, budget: &EnergyBudget) -> V
     let allowance = budget.allowance();
     if gain > ENERGY_GAIN_WARNING * allowance.abs() {
         lines.push(format!(
-            "energy rose {gain:.3e} J above its initial value plus the work of gravity and \
-             pins ({allowance:.3e} J) at t = {time:.4} s"
+            "energy rose {gain:.3e} J above its initial value plus the work of gravity, \
+             pins and the system's own terms ({allowance:.3e} J) at t = {time:.4} s"
         ));
     }
     lines

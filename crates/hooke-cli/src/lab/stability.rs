@@ -32,7 +32,8 @@ pub(crate) struct StabilityArgs {
     min_steps: usize,
     /// A cell is stable while its energy ratio 1 + G/(E(0) + max W) stays
     /// at or below FACTOR, where G = E − E(0) − W is the energy gained over
-    /// the initial energy E(0) plus the work W of gravity and pins.
+    /// the initial energy E(0) plus the work W of gravity, pins and the
+    /// system's own terms (a wind).
     #[arg(long, value_name = "FACTOR", default_value_t = hooke_lab::stability::DEFAULT_ENERGY_BOUND)]
     energy_bound: f64,
     /// Also search each integrator's largest stable timestep (within the

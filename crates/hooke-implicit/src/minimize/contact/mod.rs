@@ -104,6 +104,8 @@ pub(crate) struct Contact {
     friction_model: FrictionModel,
     /// The feasible positions the step starts from.
     start: Vec<Vec3>,
+    /// The barriers' energy at the step's start ([`Contact::start_energy`]).
+    start_energy: f64,
     /// The smallest gap seen at the end of an accepted step so far.
     pub(crate) smallest_gap: f64,
     /// Each particle's fraction of the last truncated motion.
@@ -170,6 +172,15 @@ impl Contact {
             .filter_map(|pair| pair.lag(&geometry, x0, &self.barrier, h));
         self.friction.clear();
         self.friction.extend(lagged);
+        let barrier = &self.barrier;
+        let mut sum = 0.0;
+        for pair in self.pairs.iter(&geometry, x0, d_hat) {
+            let energy = pair.energy(&geometry, x0, barrier);
+            if energy.is_finite() {
+                sum += energy;
+            }
+        }
+        self.start_energy = barrier.stiffness * sum;
     }
 
     /// The feasible positions of the step's start.
@@ -212,21 +223,13 @@ impl Contact {
     }
 
     /// `κ Σ b(g)` at the positions `x0` of the step's start, the obstacles
-    /// at `time` (infinite terms, of pairs that started crossed or inside
-    /// an obstacle, left out).
-    pub(crate) fn start_energy(&mut self, system: &System, x0: &[Vec3], time: f64) -> f64 {
-        self.obstacles.place_start(system, time);
-        let geometry = Geometry::new(system, &self.obstacles, At::Start);
-        let barrier = &self.barrier;
-        self.pairs.search(&geometry, x0, barrier.activation);
-        let mut sum = 0.0;
-        for pair in self.pairs.iter(&geometry, x0, barrier.activation) {
-            let energy = pair.energy(&geometry, x0, barrier);
-            if energy.is_finite() {
-                sum += energy;
-            }
-        }
-        barrier.stiffness * sum
+    /// there (infinite terms, of pairs that started crossed or inside an
+    /// obstacle, left out), as [`Contact::begin`] measured it over the
+    /// pairs it searched at `x0`: measured again after the minimisation,
+    /// whose iterates moved the list away from `x0`, it would cost a
+    /// proximity search at `x0` and another back at the step's end.
+    pub(crate) fn start_energy(&self) -> f64 {
+        self.start_energy
     }
 
     /// The work the moving obstacles did on the particles over a step of

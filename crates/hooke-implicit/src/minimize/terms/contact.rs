@@ -17,8 +17,6 @@ use crate::minimize::contact;
 #[derive(Debug, Default)]
 pub(super) struct Contact {
     contact: contact::Contact,
-    /// The time at the start of the current step.
-    start_time: f64,
 }
 
 impl Contact {
@@ -45,7 +43,6 @@ impl Term for Contact {
     /// feasible start.
     fn begin(&mut self, system: &System, step: &StepStart<'_>) {
         self.contact.begin(system, step.x, step.time, step.h);
-        self.start_time = step.time;
     }
 
     fn value(&mut self, system: &System, at: &At<'_>) -> Potential {
@@ -62,13 +59,14 @@ impl Term for Contact {
     }
 
     /// The barriers' energy `κ Σ b(g)`, the obstacles where they are at the
-    /// step's `when` end (infinite terms of particles that started inside
-    /// an obstacle left out at the start). Its magnitude is left out: the
-    /// energy test's allowance for rounding stays that of the bodies' own
-    /// energies.
+    /// step's `when` end: at the start, as [`Term::begin`] measured it at
+    /// the step's start positions (`x` is those; infinite terms of
+    /// particles that started inside an obstacle left out), at the end at
+    /// `x`. Its magnitude is left out: the energy test's allowance for
+    /// rounding stays that of the bodies' own energies.
     fn energy(&mut self, system: &System, x: &[Vec3], _v: &[Vec3], when: When) -> Potential {
         let value = match when {
-            When::Start => self.contact.start_energy(system, x, self.start_time),
+            When::Start => self.contact.start_energy(),
             When::End => self.contact.barrier_energy(system, x),
         };
         Potential {
