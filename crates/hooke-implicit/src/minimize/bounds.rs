@@ -64,6 +64,20 @@
 //! preconditioned by the step's factor, up to four rounds as the cut
 //! grows) left the default scene at 4.95 iterations a step and 44 in the
 //! worst: the global limit stays the default.
+//!
+//! **Where the landing steps' iterations go.** The three costliest steps
+//! of the default scene (t = 0.283, 0.3 and 0.317 s) are the cloth's
+//! hanging sides reaching the floor: in the worst, the particles within
+//! 1 cm of the floor go from 5 to 236 over its iterations, and 99 % of
+//! each direction's `‖δ‖²` lies away from the sphere. Every one of its
+//! directions is solved with compressed springs clamped (the exact
+//! Hessian is indefinite), `Φ` falls 1.2–1.7 times what the model
+//! predicts along its full steps, and successive directions point the
+//! same way (cosine 0.88–0.998). Per-particle bounds move iterations from
+//! the first phase to the second rather than remove them: those three
+//! steps take 34, 40 and 34 iterations against 40, 38 and 32 under the
+//! global limit. What remains is Newton's method on a stiff sheet that
+//! buckles as it lands, not contact.
 
 use hooke_core::{Named, Potential, StepReport, System, Vec3};
 
