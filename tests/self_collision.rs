@@ -170,17 +170,24 @@ fn cloth_resting_on_cloth_rests_without_jitter() {
     }
 }
 
-/// A free `n × n` cloth of side `size`, 0.2 kg/m², standing on a corner:
-/// in a vertical plane turned 30° within it and leaning 3° out of it (the
-/// `cloth-pile` scene's pose), its lowest corner `height` above the origin.
+/// A free, horizontal `n × n` cloth of side `size` of the default scene's
+/// stiff cloth, smaller: 0.2 kg/m², stretch and shear springs of 10⁴ and
+/// 10³ N/m.
+fn stiff_cloth(n: usize, size: f64) -> Cloth {
+    Cloth::grid(n, n)
+        .size(size, size)
+        .mass(Mass::Total(0.2 * size * size))
+        .stretch(Springs::per_spring(1e4).damping(0.02))
+        .shear(Springs::per_spring(1e3).damping(0.01))
+        .bend(1.0)
+}
+
+/// A [`stiff_cloth`] standing on a corner: in a vertical plane turned 30°
+/// within it and leaning 3° out of it (the `cloth-pile` scene's pose), its
+/// lowest corner `height` above the origin.
 fn standing_cloth(n: usize, size: f64, height: f64) -> Body {
     let cloth = |offset: [f64; 3]| {
-        Cloth::grid(n, n)
-            .size(size, size)
-            .mass(Mass::Total(0.2 * size * size))
-            .stretch(Springs::per_spring(1e4).damping(0.02))
-            .shear(Springs::per_spring(1e3).damping(0.01))
-            .bend(1.0)
+        stiff_cloth(n, size)
             .plane(Plane::Vertical)
             .rotate([0.0972, 0.0261, 0.9949], 30.15_f64.to_radians())
             .offset(offset)
@@ -245,11 +252,7 @@ fn close_to(
 fn two_cloths_falling_onto_each_other_over_a_sphere_never_intersect() {
     let mut b = SystemBuilder::new();
     for (height, degrees) in [(0.3, 0.0), (0.36, 45.0)] {
-        Cloth::grid(10, 10)
-            .size(0.5, 0.5)
-            .mass(Mass::Total(0.05))
-            .stretch(Springs::per_spring(1e4).damping(0.02))
-            .shear(Springs::per_spring(1e3).damping(0.01))
+        stiff_cloth(10, 0.5)
             .bend(20.0)
             .rotate([0.0, 1.0, 0.0], f64::to_radians(degrees))
             .offset([-0.25, height, -0.25])
@@ -343,12 +346,7 @@ fn a_cloth_shot_at_another_does_not_tunnel_through_it() {
 #[test]
 fn a_cloth_thrown_fast_at_a_thin_box_lands_on_it() {
     let mut b = SystemBuilder::new();
-    Cloth::grid(8, 8)
-        .size(0.2, 0.2)
-        .mass(Mass::Total(0.008))
-        .stretch(Springs::per_spring(1e4).damping(0.02))
-        .shear(Springs::per_spring(1e3).damping(0.01))
-        .bend(1.0)
+    stiff_cloth(8, 0.2)
         .offset([-0.1, 0.035, -0.1])
         .build()
         .unwrap()
@@ -386,12 +384,7 @@ fn a_cloth_thrown_fast_at_a_thin_box_lands_on_it() {
 #[test]
 fn a_cloth_folding_under_a_sphere_never_intersects() {
     let mut b = SystemBuilder::new();
-    Cloth::grid(12, 12)
-        .size(0.5, 0.5)
-        .mass(Mass::Total(0.05))
-        .stretch(Springs::per_spring(1e4).damping(0.02))
-        .shear(Springs::per_spring(1e3).damping(0.01))
-        .bend(1.0)
+    stiff_cloth(12, 0.5)
         .offset([-0.23, 0.21, -0.26])
         .build()
         .unwrap()
