@@ -46,16 +46,18 @@
 //!
 //! **Measured** (the default scene, `stiff-cloth`, 210 steps of 1/60 s,
 //! both limits in one build): 4.58 Newton iterations a step on average
-//! against 4.95, the worst step 41 against 41, 0.96 of the global limit's
-//! CPU time (farm-bench, 3 pairs alternated); the worst step's first phase
+//! against 4.95, the worst step 41 against 41, 0.96–0.98 of the global
+//! limit's CPU time (farm-bench, 3 pairs alternated, two runs; the
+//! benches' README has the table); the worst step's first phase
 //! — iterations cut short by collision detection — falls from 19
 //! iterations to 7, while its second, about 30 nearly full Newton steps
 //! converging linearly as the landing front buckles, stays. The cut step
 //! passes the Armijo test in few iterations (0.15 particles cut an
 //! iteration on average, 45 fallbacks in the run): most of the gain is
 //! the cut start. On the scenes where surfaces meet it is a loss:
-//! `cloth-pile` 9.72 iterations a step against 7.87 (145 fallbacks),
-//! `two-cloths` 7.66 against 7.05 and a worst step of 64 against 46. The
+//! `cloth-pile` 9.72 iterations a step against 7.87 (145 fallbacks, 1.45
+//! times the CPU time), `two-cloths` 7.66 against 7.05 and a worst step of
+//! 64 against 46 (1.17 times). The
 //! cut step fails for the reason Newton's step needed cutting: the
 //! direction was solved without the contacts it runs into, and holding
 //! the stopped particles while the rest of a stiff cloth moves on
