@@ -107,10 +107,11 @@ impl Case {
         }
         parts.builder.pin(body[4]);
         let anchored = body[0];
+        let faces = [[0, 1, 2], [0, 1, 3]].map(|f| f.map(|k| body[k]));
         own_terms::declare(
             &mut parts.builder,
             (anchored, parts.x[anchored]),
-            point - up,
+            (point - up, &faces),
             draws,
         );
         parts

@@ -2,23 +2,25 @@
 //! ([`SystemBuilder::term`]), which every case's system carries
 //! ([`declare`]): the property test reaches them through the list of
 //! terms like any other, so a term declared there is checked in every
-//! case with no other change. Two of the test's own show it: a potential,
-//! and a dissipation potential lagged at the step's start as a wind lags
-//! its triangles' normals.
+//! case with no other change. The library's [`Wind`] is one; two of the
+//! test's own show the same for any term: a potential, and a dissipation
+//! potential lagged at the step's start as a wind lags its triangles'
+//! normals.
 
 use hooke_core::{
-    At, Hessian, Potential, StepStart, SymBlock, System, SystemBuilder, Term, Vec3, When,
+    At, Hessian, Potential, StepStart, SymBlock, System, SystemBuilder, Term, Vec3, When, Wind,
 };
 
 use super::kinds::Draws;
 
 /// Declares the system's own terms in `builder`: an [`Anchor`] holding
-/// the particle `anchored` near its position `x`, and a [`Drag`] about
-/// `origin`, a point away from every particle.
+/// the particle `anchored` near its position `x`, a [`Drag`] about
+/// `origin`, a point away from every particle, and a [`Wind`] on
+/// `triangles`.
 pub(super) fn declare(
     builder: &mut SystemBuilder,
     (anchored, x): (usize, Vec3),
-    origin: Vec3,
+    (origin, triangles): (Vec3, &[[usize; 3]]),
     draws: &mut Draws,
 ) {
     builder.term(Anchor {
@@ -32,6 +34,11 @@ pub(super) fn declare(
         o: origin,
         directions: Vec::new(),
     });
+    builder.term(Wind::new(
+        draws.vector(3.0),
+        draws.log_range(1e-2, 1.0),
+        triangles.to_vec(),
+    ));
 }
 
 /// A linear spring from particle `i` to the fixed point `p`:
