@@ -41,13 +41,13 @@ impl Descent for Lbfgs<'_> {
         self.evaluated = false;
     }
 
-    /// The quasi-Newton step at `v`: the residual `−∇Φ(v)`, the barriers'
-    /// gradients included, without any matrix, then L-BFGS's two-loop
-    /// recursion ([`QuasiNewton::direction`]). Returns the slope `∇Φ·δ`.
     fn slope(&self, d: &[Vec3]) -> f64 {
         -dot(self.b, d)
     }
 
+    /// The quasi-Newton step at `v`: the residual `−∇Φ(v)`, the barriers'
+    /// gradients included, without any matrix, then L-BFGS's two-loop
+    /// recursion ([`QuasiNewton::direction`]). Returns the slope `∇Φ·δ`.
     fn direction(
         &mut self,
         phi: &mut Objective<'_>,
