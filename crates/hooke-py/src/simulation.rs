@@ -122,6 +122,11 @@ fn report_dict<'py>(
     dict.set_item("energy_corrections", r.energy_corrections)?;
     dict.set_item("energy_excess", r.energy_excess)?;
     dict.set_item("contacts", r.contacts)?;
+    dict.set_item("proximity_queries", r.proximity_queries)?;
+    dict.set_item("detection_s", r.detection_seconds)?;
+    dict.set_item("truncated_particles", r.truncated_particles)?;
+    dict.set_item("truncated_particles_max", r.truncated_particles_max)?;
+    dict.set_item("bound_fallbacks", r.bound_fallbacks)?;
     Ok(dict)
 }
 
@@ -239,9 +244,13 @@ impl Simulation {
     /// (`newton_iterations`, `linear_iterations`, `linear_solves`,
     /// `accepted_steps` and `rejected_steps` of the substeps,
     /// `unconverged_steps`, `unconverged_solves`, `energy_corrections`,
-    /// `force_evaluations`, `contacts`) and largest values
+    /// `force_evaluations`, `contacts`; contact's `proximity_queries`,
+    /// `detection_s` of collision detection inside `wall_s`, the
+    /// `truncated_particles` that per-particle bounds cut and their
+    /// `bound_fallbacks` to the global limit) and largest values
     /// (`newton_iterations_max`, `newton_residual`, `linear_residual`,
-    /// `energy_excess`), and the `linear_solver` used.
+    /// `energy_excess`, `truncated_particles_max` in one iteration), and
+    /// the `linear_solver` used.
     #[getter]
     fn report<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let inner = self.lock();

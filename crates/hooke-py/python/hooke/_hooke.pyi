@@ -221,10 +221,14 @@ class Simulation:
         summed (``newton_iterations``, ``linear_iterations``,
         ``linear_solves``, ``accepted_steps`` and ``rejected_steps`` of the
         substeps, ``unconverged_steps``, ``unconverged_solves``,
-        ``energy_corrections``, ``force_evaluations``, ``contacts``) and
-        largest values (``newton_iterations_max``, ``newton_residual``,
-        ``linear_residual``, ``energy_excess``), and the ``linear_solver``
-        used."""
+        ``energy_corrections``, ``force_evaluations``, ``contacts``;
+        contact's ``proximity_queries``, ``detection_s`` of collision
+        detection inside ``wall_s``, the ``truncated_particles`` that
+        per-particle bounds cut and their ``bound_fallbacks`` to the global
+        limit) and largest values (``newton_iterations_max``,
+        ``newton_residual``, ``linear_residual``, ``energy_excess``,
+        ``truncated_particles_max`` in one iteration), and the
+        ``linear_solver`` used."""
     @property
     def positions(self) -> Float64Array:
         """Positions, an ``(n, 3)`` float64 array (a copy), m. Setting them

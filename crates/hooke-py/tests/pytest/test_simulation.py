@@ -79,6 +79,20 @@ def test_a_system_from_arrays_is_the_same_system_as_from_toml():
     assert np.array_equal(a.positions, b.positions) and np.array_equal(a.velocities, b.velocities)
 
 
+def test_the_report_prices_collision_detection_under_either_contact_limit():
+    for limit in ["global", "particles"]:
+        sim = hooke.Simulation("cloth-on-sphere", contact_limit=limit)
+        sim.advance(0.3)
+        r = sim.report
+        assert sim.settings["contact_limit"] == limit
+        assert r["contacts"] > 0 and r["proximity_queries"] > 0, limit
+        assert 0.0 < r["detection_s"] < r["wall_s"], limit
+        assert r["truncated_particles_max"] <= r["truncated_particles"], limit
+        assert r["truncated_particles_max"] <= sim.positions.shape[0], limit
+        if limit == "global":
+            assert r["truncated_particles"] == r["bound_fallbacks"] == 0
+
+
 WINDY = """
 [simulation]
 duration = 1.0
