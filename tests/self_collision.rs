@@ -93,6 +93,22 @@ fn floor(friction: f64) -> Obstacle {
     .friction(friction)
 }
 
+/// The default scene's world in `b`: gravity, air damping of 10⁻⁵ N·s/m,
+/// and a sphere of `radius` resting on the floor at the origin, both with
+/// friction 0.5.
+fn sphere_on_floor(b: &mut SystemBuilder, radius: f64) {
+    b.gravity([0.0, -9.81, 0.0]);
+    b.air_damping(1e-5);
+    b.obstacle(
+        Obstacle::new(Shape::Sphere {
+            center: Vec3::new(0.0, radius, 0.0),
+            radius,
+        })
+        .friction(0.5),
+    );
+    b.obstacle(floor(0.5));
+}
+
 /// Steps `system` for `duration` s with the library's default implicit step,
 /// and again with per-particle contact bounds, checking every step's
 /// positions for intersecting triangles and the energy (springs, kinetic,
@@ -260,16 +276,7 @@ fn two_cloths_falling_onto_each_other_over_a_sphere_never_intersect() {
             .unwrap()
             .add_to(&mut b);
     }
-    b.gravity([0.0, -9.81, 0.0]);
-    b.air_damping(1e-5);
-    b.obstacle(
-        Obstacle::new(Shape::Sphere {
-            center: Vec3::new(0.0, 0.12, 0.0),
-            radius: 0.12,
-        })
-        .friction(0.5),
-    );
-    b.obstacle(floor(0.5));
+    sphere_on_floor(&mut b, 0.12);
     let system = b.build().unwrap();
     // 6 cm apart at the start; at the end the upper lies on the lower, its
     // particles within ¾ of a grid spacing (5.6 cm) of the lower's.
@@ -389,16 +396,7 @@ fn a_cloth_folding_under_a_sphere_never_intersects() {
         .build()
         .unwrap()
         .add_to(&mut b);
-    b.gravity([0.0, -9.81, 0.0]);
-    b.air_damping(1e-5);
-    b.obstacle(
-        Obstacle::new(Shape::Sphere {
-            center: Vec3::new(0.0, 0.08, 0.0),
-            radius: 0.08,
-        })
-        .friction(0.5),
-    );
-    b.obstacle(floor(0.5));
+    sphere_on_floor(&mut b, 0.08);
     let system = b.build().unwrap();
     let state = run_without_intersections(&system, 1.0 / 60.0, 1.0);
     // Draped: its corners on the floor, its middle on the sphere's top.
