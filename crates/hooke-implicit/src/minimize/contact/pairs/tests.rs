@@ -404,3 +404,63 @@ fn the_contact_limit_checks_pairs_along_what_the_obstacles_allow() {
         "{floor_first}, {pairs_first}"
     );
 }
+
+/// A fine flat sheet (as in `a_fine_flat_sheet_lists_no_pair_of_its_own`)
+/// swung 8° as a whole about one edge: a motion of more than an edge,
+/// which the particles' common translation does not take off, so that
+/// every pair of neighbouring primitives is a swept candidate and the
+/// common translation alone cannot clear one of them. A pair's own
+/// primitives move together, and the swept search lists only the pairs
+/// that their motion relative to each other can bring within d̂: none of
+/// the swung sheet's. Shaken besides (each particle up to 2 d̂ in its own
+/// direction), the sheet brings pairs within d̂, and the list holds every
+/// one of them, anywhere along the motion.
+#[test]
+fn a_swept_search_measures_each_pair_by_its_own_relative_motion() {
+    let mut b = SystemBuilder::new();
+    let n = 20;
+    let spacing = 0.01;
+    sheet(&mut b, n, spacing, Vec3::zeros());
+    b.contact_distance(0.25 * spacing);
+    let system = b.build().unwrap();
+    let d_hat = system.contact_distance();
+    let x0 = system.initial_positions().to_vec();
+    let obstacles = Obstacles::default();
+    let geometry = Geometry::new(&system, &obstacles, At::End);
+    // Particle (i, j) sits at spacing · (i, 0, j); the swing turns it
+    // about the x axis.
+    let (sin, cos) = 8.0_f64.to_radians().sin_cos();
+    let mut unit = uniform(17);
+    for shake in [0.0, 2.0 * d_hat] {
+        let dx: Vec<Vec3> = x0
+            .iter()
+            .map(|x| {
+                let swung = Vec3::new(x.x, x.z * sin, x.z * cos);
+                let d = Vec3::new(unit(), unit(), unit()).normalize();
+                swung - x + shake * (unit() + 0.5) * d
+            })
+            .collect();
+        let end: Vec<Vec3> = x0.iter().zip(&dx).map(|(x, d)| x + d).collect();
+        assert!(drift(&x0, &end).1 > spacing);
+        let mut pairs = SurfacePart::default();
+        pairs.begin(&system);
+        pairs.search(&system, &x0, d_hat);
+        limit(&mut pairs, &geometry, (&x0, &dx), (KEEP, d_hat));
+        assert!(pairs.verlet.margin == 0.0, "shaken {shake} m: not swept");
+        let mut boxes = Candidates::default();
+        let reach = d_hat + pairs.thickest;
+        BroadPhase::default().swept(system.surfaces(), &x0, &end, reach, &mut boxes);
+        let count = |c: &Candidates| c.point_triangle.len() + c.edge_edge.len();
+        let (listed, found) = (count(&pairs.near), count(&boxes));
+        let close = every_close_pair_listed(&system, &pairs, &x0, &dx, 20);
+        let expected = if shake == 0.0 {
+            close == 0 && listed == 0 && found > 1000
+        } else {
+            close > 0 && listed < found
+        };
+        assert!(
+            expected,
+            "shaken {shake} m: {listed} listed of {found} found, {close} close"
+        );
+    }
+}
