@@ -63,8 +63,6 @@ pub(super) struct SurfacePart {
     /// Scratch for each particle's distance from the search's positions at
     /// the start of a motion, and the farthest it gets along the motion.
     moved: Vec<(f64, f64)>,
-    /// Scratch for each particle's motion in a swept search.
-    motion: Vec<Vec3>,
     /// The searches (proximity or swept) since the count was last taken.
     pub(super) queries: usize,
 }
@@ -199,17 +197,13 @@ impl SurfacePart {
             activation + self.thickest,
             &mut self.near,
         );
-        self.motion.clear();
-        self.motion.extend(x.iter().zip(end).map(|(x, e)| e - x));
-        let motion = &self.motion;
         Self::retain(
             system,
             x,
             &mut self.near,
             &mut self.searched,
             |pair, distance| {
-                let common = motion[pair.particles[0]];
-                let (first, second) = pair.largest(|p| (motion[p] - common).norm());
+                let (first, second) = Self::relative(pair, x, end);
                 below(distance - first - second - pair.thickness, activation)
             },
         );
@@ -239,6 +233,16 @@ impl SurfacePart {
                 )
             })
             .map(|(pair, _)| pair)
+    }
+
+    /// The farthest the corners of each of `pair`'s two primitives move
+    /// from `x` to `y` relative to the pair's first particle: the pair's
+    /// distance changes by no more than their sum, as a translation of
+    /// the whole pair leaves it unchanged.
+    fn relative(pair: &Pair, x: &[Vec3], y: &[Vec3]) -> (f64, f64) {
+        let q = pair.particles[0];
+        let common = y[q] - x[q];
+        pair.largest(|p| (y[p] - x[p] - common).norm())
     }
 
     /// The largest `τ ∈ [0, 1]` such that the motion from `x` to `x + τ dx`
