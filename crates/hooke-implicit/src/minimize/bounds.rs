@@ -113,7 +113,11 @@
 //! full step extended as far as collision detection allows when the
 //! doubling to `α = 2` is cut (`Φ` along these directions is lowest
 //! around `α` = 1.5, with a particle through the floor by `α` = 2–3)
-//! gives 4.82 a step and the same 41 at most.
+//! gives 4.82 a step and the same 41 at most. The same holds for the
+//! sheet with every spring 100 times stiffer at `h` = 0.1 s (33.8
+//! iterations a step): its costly steps, 23–97 iterations each between
+//! t = 0.1 and 1 s, are cut short by collision detection in at most a
+//! quarter of their iterations, and from t = 0.3 s in almost none.
 
 use hooke_core::{Named, Potential, StepReport, System, Vec3};
 
