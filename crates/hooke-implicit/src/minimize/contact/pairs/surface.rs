@@ -6,6 +6,7 @@ use hooke_core::collision::broad::{BroadPhase, Candidates};
 use hooke_core::{System, Vec3};
 
 use super::verlet::{MARGIN, Verlet, below, drift, motion_margin};
+use crate::linear::vector::for_each_row;
 use crate::minimize::contact::pair::{Geometry, Pair};
 
 /// The widest margin of a search, in units of the surfaces' mean edge
@@ -22,6 +23,10 @@ const WIDEST: f64 = 0.25;
 /// search that [`SurfacePart::limit`] makes for a motion; a longer motion
 /// gets a swept search.
 const MAX_MARGIN: f64 = 16.0;
+
+/// Candidates a block whose distances [`SurfacePart::retain`] computes
+/// together (a 512 KiB scratch).
+const RETAIN_BLOCK: usize = 1 << 16;
 
 /// The pairs of a system's surfaces, with the broad phase's buffers.
 ///
@@ -55,7 +60,7 @@ pub(super) struct SurfacePart {
     pub(super) verlet: Verlet,
     /// Each candidate's distance at the search's positions, in the order
     /// of [`SurfacePart::pairs`].
-    searched: Vec<f64>,
+    pub(super) searched: Vec<f64>,
     /// The largest thickness of a pair.
     pub(super) thickest: f64,
     /// The widest margin of a search ([`WIDEST`] mean edges).
@@ -63,6 +68,8 @@ pub(super) struct SurfacePart {
     /// Scratch for each particle's distance from the search's positions at
     /// the start of a motion, and the farthest it gets along the motion.
     moved: Vec<(f64, f64)>,
+    /// Scratch for the candidates' distances in a search.
+    distances: Vec<f64>,
     /// The searches (proximity or swept) since the count was last taken.
     pub(super) queries: usize,
 }
@@ -133,35 +140,60 @@ impl SurfacePart {
         Self::retain(
             system,
             x,
-            &mut self.near,
-            &mut self.searched,
+            (&mut self.near, &mut self.searched, &mut self.distances),
             |pair, distance| below(distance - pair.thickness, activation + margin),
         );
     }
 
     /// Keeps the candidates `near` for which `close(pair, D)` holds, `D`
     /// the pair's distance at `x`, and their distances in `searched`, in
-    /// the order of [`SurfacePart::pairs`].
+    /// the order of [`SurfacePart::pairs`]. The distances, most of the
+    /// narrow phase's time, are computed a block of [`RETAIN_BLOCK`]
+    /// candidates at a time into `scratch` (a dropped candidate marked
+    /// there by a negative distance), on every core ([`for_each_row`]),
+    /// and each block's kept candidates moved down in order.
     fn retain(
         system: &System,
         x: &[Vec3],
-        near: &mut Candidates,
-        searched: &mut Vec<f64>,
-        close: impl Fn(&Pair, f64) -> bool,
+        (near, searched, scratch): (&mut Candidates, &mut Vec<f64>, &mut Vec<f64>),
+        close: impl Fn(&Pair, f64) -> bool + Sync,
     ) {
         searched.clear();
-        let mut within = |pair: Pair| {
-            let distance = pair.distance(x);
-            let keep = close(&pair, distance);
-            if keep {
-                searched.push(distance);
+        let point_triangle = |vt| Pair::point_triangle(system, vt);
+        let edge_edge = |ef| Pair::edge_edge(system, ef);
+        for (list, pair) in [
+            (
+                &mut near.point_triangle,
+                &point_triangle as &(dyn Fn(_) -> Pair + Sync),
+            ),
+            (&mut near.edge_edge, &edge_edge),
+        ] {
+            let mut kept = 0;
+            for start in (0..list.len()).step_by(RETAIN_BLOCK) {
+                let block = start..list.len().min(start + RETAIN_BLOCK);
+                scratch.resize(block.len(), 0.0);
+                let candidates = &list[block.clone()];
+                for_each_row(scratch, |k, slot| {
+                    let pair = pair(candidates[k]);
+                    let distance = pair.distance(x);
+                    *slot = if close(&pair, distance) {
+                        distance
+                    } else {
+                        -1.0
+                    };
+                });
+                for (k, &distance) in block.zip(scratch.iter()) {
+                    // A distance that is not a number (a position that is
+                    // not one) was kept by `close` and stays.
+                    if distance >= 0.0 || distance.is_nan() {
+                        list[kept] = list[k];
+                        searched.push(distance);
+                        kept += 1;
+                    }
+                }
             }
-            keep
-        };
-        near.point_triangle
-            .retain(|&vt| within(Pair::point_triangle(system, vt)));
-        near.edge_edge
-            .retain(|&ef| within(Pair::edge_edge(system, ef)));
+            list.truncate(kept);
+        }
     }
 
     /// A swept search over the motion from `x` to `end`:
@@ -200,8 +232,7 @@ impl SurfacePart {
         Self::retain(
             system,
             x,
-            &mut self.near,
-            &mut self.searched,
+            (&mut self.near, &mut self.searched, &mut self.distances),
             |pair, distance| {
                 let (first, second) = Self::relative(pair, x, end);
                 below(distance - first - second - pair.thickness, activation)

@@ -464,3 +464,51 @@ fn a_swept_search_measures_each_pair_by_its_own_relative_motion() {
         );
     }
 }
+
+/// A search whose candidates fill several blocks of the narrow phase (a
+/// 90 × 90 sheet with a contact distance of two spacings, about 90
+/// candidates a particle, their distances computed on every core) keeps
+/// exactly the pairs a direct filter of the same candidates keeps, in
+/// the same order, each with its distance.
+#[test]
+fn a_search_longer_than_a_block_keeps_what_a_direct_filter_keeps() {
+    let mut b = SystemBuilder::new();
+    let spacing = 0.01;
+    sheet(&mut b, 90, spacing, Vec3::zeros());
+    b.contact_distance(2.0 * spacing);
+    let system = b.build().unwrap();
+    let d_hat = system.contact_distance();
+    let mut unit = uniform(23);
+    let x: Vec<Vec3> = system
+        .initial_positions()
+        .iter()
+        .map(|x| x + 0.3 * spacing * Vec3::new(unit(), unit(), unit()))
+        .collect();
+    let mut pairs = SurfacePart::default();
+    pairs.begin(&system);
+    pairs.search(&system, &x, d_hat);
+    let reach = d_hat + pairs.verlet.margin;
+    let mut found = Candidates::default();
+    BroadPhase::default().proximity(system.surfaces(), &x, reach, &mut found);
+    let count = |c: &Candidates| c.point_triangle.len() + c.edge_edge.len();
+    assert!(
+        count(&found) > 4 * (1 << 16),
+        "{} candidates",
+        count(&found)
+    );
+    let direct: Vec<(Pair, f64)> = SurfacePart::pairs(&system, &found)
+        .map(|pair| {
+            let distance = pair.distance(&x);
+            (pair, distance)
+        })
+        .filter(|(pair, distance)| distance - pair.thickness < reach)
+        .collect();
+    let listed: Vec<Pair> = SurfacePart::pairs(&system, &pairs.near).collect();
+    assert_eq!(listed.len(), direct.len());
+    assert!(count(&pairs.near) < count(&found), "every candidate kept");
+    for ((pair, searched), (expected, distance)) in listed.iter().zip(&pairs.searched).zip(&direct)
+    {
+        assert_eq!(pair.particles, expected.particles);
+        assert_eq!(searched.to_bits(), distance.to_bits());
+    }
+}
