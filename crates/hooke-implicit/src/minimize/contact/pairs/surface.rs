@@ -159,41 +159,50 @@ impl SurfacePart {
         close: impl Fn(&Pair, f64) -> bool + Sync,
     ) {
         searched.clear();
+        let within = |pair: Pair| {
+            let distance = pair.distance(x);
+            if close(&pair, distance) {
+                distance
+            } else {
+                -1.0
+            }
+        };
         let point_triangle = |vt| Pair::point_triangle(system, vt);
+        Self::retain_list(
+            &mut near.point_triangle,
+            point_triangle,
+            &within,
+            (searched, scratch),
+        );
         let edge_edge = |ef| Pair::edge_edge(system, ef);
-        for (list, pair) in [
-            (
-                &mut near.point_triangle,
-                &point_triangle as &(dyn Fn(_) -> Pair + Sync),
-            ),
-            (&mut near.edge_edge, &edge_edge),
-        ] {
-            let mut kept = 0;
-            for start in (0..list.len()).step_by(RETAIN_BLOCK) {
-                let block = start..list.len().min(start + RETAIN_BLOCK);
-                scratch.resize(block.len(), 0.0);
-                let candidates = &list[block.clone()];
-                for_each_row(scratch, |k, slot| {
-                    let pair = pair(candidates[k]);
-                    let distance = pair.distance(x);
-                    *slot = if close(&pair, distance) {
-                        distance
-                    } else {
-                        -1.0
-                    };
-                });
-                for (k, &distance) in block.zip(scratch.iter()) {
-                    // A distance that is not a number (a position that is
-                    // not one) was kept by `close` and stays.
-                    if distance >= 0.0 || distance.is_nan() {
-                        list[kept] = list[k];
-                        searched.push(distance);
-                        kept += 1;
-                    }
+        Self::retain_list(&mut near.edge_edge, edge_edge, &within, (searched, scratch));
+    }
+
+    /// [`SurfacePart::retain`] over one list of candidates, each made a
+    /// pair by `pair`; `within` gives a pair's distance, or −1 to drop it.
+    fn retain_list(
+        list: &mut Vec<(u32, u32)>,
+        pair: impl Fn((u32, u32)) -> Pair + Sync,
+        within: &(impl Fn(Pair) -> f64 + Sync),
+        (searched, scratch): (&mut Vec<f64>, &mut Vec<f64>),
+    ) {
+        let mut kept = 0;
+        for start in (0..list.len()).step_by(RETAIN_BLOCK) {
+            let block = start..list.len().min(start + RETAIN_BLOCK);
+            scratch.resize(block.len(), 0.0);
+            let candidates = &list[block.clone()];
+            for_each_row(scratch, |k, slot| *slot = within(pair(candidates[k])));
+            for (k, &distance) in block.zip(scratch.iter()) {
+                // A distance that is not a number (a position that is not
+                // one) was kept by `close` and stays.
+                if distance >= 0.0 || distance.is_nan() {
+                    list[kept] = list[k];
+                    searched.push(distance);
+                    kept += 1;
                 }
             }
-            list.truncate(kept);
         }
+        list.truncate(kept);
     }
 
     /// A swept search over the motion from `x` to `end`:
